@@ -1,0 +1,21 @@
+# Installs the library as a CMake package: find_package(repose) then link repose::repose.
+include(CMakePackageConfigHelpers)
+
+install(TARGETS repose EXPORT reposeTargets
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
+  INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY include/repose DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+if(TARGET repose_cli)
+  install(TARGETS repose_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+endif()
+
+set(REPOSE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/repose)
+install(EXPORT reposeTargets NAMESPACE repose:: DESTINATION ${REPOSE_CMAKE_DIR})
+configure_package_config_file(cmake/reposeConfig.cmake.in ${CMAKE_CURRENT_BINARY_DIR}/reposeConfig.cmake
+  INSTALL_DESTINATION ${REPOSE_CMAKE_DIR})
+write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/reposeConfigVersion.cmake
+  COMPATIBILITY SameMinorVersion)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/reposeConfig.cmake ${CMAKE_CURRENT_BINARY_DIR}/reposeConfigVersion.cmake
+  DESTINATION ${REPOSE_CMAKE_DIR})

@@ -1,0 +1,24 @@
+// Mass properties of a closed triangulated solid of uniform density.
+#pragma once
+
+#include "repose/geometry/types.hpp"
+
+namespace repose {
+
+/// Mass properties. Units: volume L^3, mass M, inertia M·L^2, for whatever length L and mass M units the
+/// mesh and density are in.
+struct MassProperties {
+  double volume = 0;
+  double mass = 0;                              ///< density · volume
+  Vec3 center_of_mass = Vec3::Zero();           ///< in the mesh's frame
+  Mat3 inertia = Mat3::Zero();                  ///< inertia tensor about the centre of mass, mesh axes
+  Vec3 principal_moments = Vec3::Zero();        ///< eigenvalues of `inertia`, ascending
+  Mat3 principal_axes = Mat3::Identity();       ///< columns are the principal axes, a proper rotation
+};
+
+/// Exact mass properties of a closed, outward-oriented triangle mesh (Eberly's polyhedral mass properties,
+/// after Mirtich 1996). Integrals are taken relative to the bounding-box centre, so a particle far from the
+/// origin loses no precision.
+MassProperties compute_mass_properties(const TriangleMesh& mesh, double density);
+
+}  // namespace repose
