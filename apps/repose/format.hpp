@@ -1,0 +1,42 @@
+// Small formatting and option-checking helpers shared by the subcommands.
+#pragma once
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "repose/error.hpp"
+#include "repose/geometry/types.hpp"
+
+namespace repose::cli {
+
+/// A number with 10 significant digits, for human-readable output.
+inline std::string num(double x) {
+  std::ostringstream s;
+  s.precision(10);
+  s << x;
+  return s.str();
+}
+
+/// "[x, y, z]" with 10 significant digits.
+template <class V>
+std::string vec(const V& v) {
+  std::string s = "[";
+  for (Eigen::Index i = 0; i < v.size(); ++i) s += (i ? ", " : "") + num(v[i]);
+  return s + "]";
+}
+
+inline nlohmann::json to_json(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+inline nlohmann::json to_json(const Mat3& m) {
+  return {to_json(Vec3(m.row(0))), to_json(Vec3(m.row(1))), to_json(Vec3(m.row(2)))};
+}
+
+/// Throws repose::Error unless `value` is finite and > 0.
+inline void check_positive(const std::string& option, double value) {
+  if (!std::isfinite(value) || value <= 0)
+    throw Error("option " + option + " must be a finite positive number, got " + num(value));
+}
+
+}  // namespace repose::cli

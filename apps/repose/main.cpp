@@ -1,0 +1,42 @@
+// repose: predicts how a rigid particle settles on a flat wall and where it comes to rest.
+//
+// Exit codes: 0 success; 2 bad input (options, files, specs), with a one-line message on stderr; 1 an
+// unexpected internal error.
+#include <exception>
+#include <iostream>
+#include <vector>
+
+#include "commands.hpp"
+#include "repose/error.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"repose: where and how an arbitrary-shaped particle comes to rest on a flat wall"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "repose 0.1.0");
+  const std::vector<repose::cli::Command> commands = {
+      repose::cli::add_info_command(app),
+  };
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "repose: error: " << e.what() << " (see repose --help)\n";
+    return 2;
+  }
+  try {
+    for (const auto& command : commands)
+      if (command.app->parsed()) return command.run();
+  } catch (const repose::Error& e) {
+    std::cerr << "repose: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "repose: internal error: " << e.what() << "\n";
+    return 1;
+  }
+  return 1;
+}

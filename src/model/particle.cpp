@@ -1,0 +1,40 @@
+#include "repose/model/particle.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "repose/error.hpp"
+#include "repose/geometry/shapes.hpp"
+#include "repose/io/mesh_io.hpp"
+
+namespace repose {
+
+double characteristic_length(double volume) { return std::cbrt(6.0 * volume / std::numbers::pi); }
+
+Particle make_particle(TriangleMesh mesh, const std::string& name, double density) {
+  if (!std::isfinite(density) || density <= 0)
+    throw Error(name + ": density must be a finite positive number, got " + std::to_string(density));
+  Particle p;
+  p.name = name;
+  p.report = validate_mesh(mesh, name);
+
+  const MassProperties input_mass = compute_mass_properties(mesh, density);
+  p.input_offset = input_mass.center_of_mass;
+  for (Vec3& v : mesh.vertices) v -= p.input_offset;
+  p.mesh = std::move(mesh);
+
+  // Recompute in the body frame rather than shifting, so the stored centre of mass is zero to round-off of
+  // the body-frame coordinates themselves.
+  p.mass = compute_mass_properties(p.mesh, density);
+  p.length = characteristic_length(p.mass.volume);
+  p.bounds = bounding_box(p.mesh.vertices);
+  p.hull = compute_convex_hull(p.mesh.vertices);
+  return p;
+}
+
+Particle load_particle(const std::string& source, double density) {
+  if (is_shape_spec(source)) return make_particle(make_shape(source), source, density);
+  return make_particle(read_mesh(source), source, density);
+}
+
+}  // namespace repose
