@@ -1,0 +1,253 @@
+#include "repose/geometry/mesh.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "repose/error.hpp"
+
+namespace repose {
+namespace {
+
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+
+// Unit cube [0,1]^3, vertex i at (bit 0, bit 1, bit 2) of i, triangles counter-clockwise from outside.
+TriangleMesh unit_cube() {
+  TriangleMesh m;
+  for (int i = 0; i < 8; ++i) m.vertices.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+  m.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                 {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  return m;
+}
+
+// Every triangle with its own three vertex records, as STL stores them.
+TriangleMesh soup(const TriangleMesh& m) {
+  TriangleMesh out;
+  for (const Triangle& t : m.triangles) {
+    const auto base = static_cast<std::int32_t>(out.vertices.size());
+    for (const std::int32_t i : t) out.vertices.push_back(m.vertices[i]);
+    out.triangles.push_back({base, base + 1, base + 2});
+  }
+  return out;
+}
+
+TriangleMesh transformed(TriangleMesh m, double scale, const Vec3& offset) {
+  for (Vec3& v : m.vertices) v = scale * v + offset;
+  return m;
+}
+
+// The message of the repose::Error that validate_mesh throws ("" if it does not throw).
+std::string validation_error(TriangleMesh m, const std::string& name = "part.stl") {
+  try {
+    validate_mesh(m, name);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(MeshValidate, ValidCubeNeedsNoRepair) {
+  TriangleMesh m = unit_cube();
+  const MeshReport r = validate_mesh(m, "cube");
+  EXPECT_EQ(r.input_vertices, 8);
+  EXPECT_EQ(r.input_triangles, 12);
+  EXPECT_EQ(r.welded_vertices, 0);
+  EXPECT_EQ(r.degenerate_triangles, 0);
+  EXPECT_EQ(r.unused_vertices, 0);
+  EXPECT_FALSE(r.flipped);
+  EXPECT_TRUE(r.warnings.empty());
+  EXPECT_EQ(m.vertices, unit_cube().vertices);
+  EXPECT_EQ(m.triangles, unit_cube().triangles);
+  EXPECT_DOUBLE_EQ(signed_volume(m), 1.0);
+}
+
+TEST(MeshValidate, EmptyMeshIsRejected) {
+  EXPECT_EQ(validation_error(TriangleMesh{}), "part.stl: empty mesh (no triangles)");
+  TriangleMesh no_triangles = unit_cube();
+  no_triangles.triangles.clear();
+  EXPECT_EQ(validation_error(no_triangles), "part.stl: empty mesh (no triangles)");
+  TriangleMesh no_vertices = unit_cube();
+  no_vertices.vertices.clear();
+  EXPECT_EQ(validation_error(no_vertices), "part.stl: empty mesh (no triangles)");
+}
+
+TEST(MeshValidate, IndexOutOfRangeIsRejected) {
+  TriangleMesh m = unit_cube();
+  m.triangles[3][1] = 8;
+  EXPECT_EQ(validation_error(m), "part.stl: in triangle 3, vertex index 8 does not exist (8 vertices)");
+  m.triangles[3][1] = -1;
+  EXPECT_EQ(validation_error(m), "part.stl: in triangle 3, vertex index -1 does not exist (8 vertices)");
+}
+
+TEST(MeshValidate, NonFiniteCoordinateIsRejected) {
+  TriangleMesh m = unit_cube();
+  m.vertices[2].y() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(validation_error(m), "part.stl: vertex 2 has a non-finite coordinate");
+  m = unit_cube();
+  m.vertices[5].z() = -std::numeric_limits<double>::infinity();
+  EXPECT_EQ(validation_error(m), "part.stl: vertex 5 has a non-finite coordinate");
+}
+
+TEST(MeshValidate, WeldsDuplicateVertices) {
+  TriangleMesh m = soup(unit_cube());
+  const MeshReport r = validate_mesh(m, "soup");
+  EXPECT_EQ(r.input_vertices, 36);
+  EXPECT_EQ(r.welded_vertices, 28);
+  EXPECT_EQ(r.unused_vertices, 0);
+  EXPECT_THAT(r.warnings, ElementsAre("welded 28 duplicate vertices"));
+  EXPECT_EQ(m.vertices.size(), 8u);
+  EXPECT_EQ(m.triangles.size(), 12u);
+  EXPECT_DOUBLE_EQ(signed_volume(m), 1.0);
+}
+
+TEST(MeshValidate, WeldToleranceIsRelativeToSize) {
+  // Copies 1e-12·D apart are the same vertex; 1e-6·D apart they are not, so the surface stays open.
+  for (const double scale : {1.0, 5e-5, 1e4}) {
+    TriangleMesh near = transformed(soup(unit_cube()), scale, Vec3::Zero());
+    TriangleMesh far = near;
+    for (std::size_t i = 0; i < near.vertices.size(); i += 3) {
+      near.vertices[i].x() += 1e-12 * scale;
+      far.vertices[i].x() += 1e-6 * scale;
+    }
+    EXPECT_EQ(validate_mesh(near, "near").welded_vertices, 28) << scale;
+    EXPECT_THAT(validation_error(far), HasSubstr("open surface")) << scale;
+  }
+}
+
+TEST(MeshValidate, RemovesDegenerateTrianglesAndUnusedVertices) {
+  TriangleMesh m = unit_cube();
+  m.vertices.emplace_back(0, 0, 0);    // 8: duplicate of vertex 0
+  m.vertices.emplace_back(2, 2, 2);    // 9..11: collinear
+  m.vertices.emplace_back(3, 3, 3);    //
+  m.vertices.emplace_back(4, 4, 4);    //
+  m.vertices.emplace_back(-5, 7, 9);   // 12: referenced by nothing
+  m.triangles.push_back({0, 0, 1});    // repeated index
+  m.triangles.push_back({8, 1, 0});    // repeated index after welding
+  m.triangles.push_back({9, 10, 11});  // zero area
+  const MeshReport r = validate_mesh(m, "cube");
+  EXPECT_EQ(r.input_vertices, 13);
+  EXPECT_EQ(r.input_triangles, 15);
+  EXPECT_EQ(r.welded_vertices, 1);
+  EXPECT_EQ(r.degenerate_triangles, 3);
+  EXPECT_EQ(r.unused_vertices, 4);
+  EXPECT_THAT(r.warnings,
+              ElementsAre("welded 1 duplicate vertex", "removed 3 degenerate triangles (zero area)",
+                          "removed 4 unused vertices"));
+  // What remains is the cube, in its original order.
+  EXPECT_EQ(m.vertices, unit_cube().vertices);
+  EXPECT_EQ(m.triangles, unit_cube().triangles);
+}
+
+TEST(MeshValidate, AllTrianglesDegenerateIsRejected) {
+  TriangleMesh m;
+  m.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0)};
+  m.triangles = {{0, 1, 2}, {0, 2, 1}};
+  EXPECT_EQ(validation_error(m), "part.stl: all 2 triangles are degenerate (zero area)");
+  m.vertices = {Vec3(1, 1, 1), Vec3(1, 1, 1), Vec3(1, 1, 1)};
+  EXPECT_THAT(validation_error(m), HasSubstr("part.stl: zero volume"));
+}
+
+TEST(MeshValidate, OpenSurfaceIsRejected) {
+  TriangleMesh m = unit_cube();
+  m.triangles.erase(m.triangles.begin(), m.triangles.begin() + 2);  // the z = 0 face
+  EXPECT_EQ(validation_error(m),
+            "part.stl: open surface: 4 boundary edges (the mesh must be a closed solid)");
+}
+
+TEST(MeshValidate, FailureLeavesMeshUnchanged) {
+  TriangleMesh m = soup(unit_cube());
+  m.triangles.pop_back();
+  const TriangleMesh before = m;
+  EXPECT_THROW(validate_mesh(m, "open"), Error);
+  EXPECT_EQ(m.vertices, before.vertices);
+  EXPECT_EQ(m.triangles, before.triangles);
+}
+
+TEST(MeshValidate, NonManifoldEdgeIsRejected) {
+  TriangleMesh m;
+  m.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(0, 0, 1)};
+  m.triangles = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  EXPECT_EQ(validation_error(m), "part.stl: non-manifold surface: 1 edges shared by more than two triangles");
+}
+
+TEST(MeshValidate, InconsistentWindingIsRejected) {
+  TriangleMesh m = unit_cube();
+  std::swap(m.triangles[5][0], m.triangles[5][1]);
+  EXPECT_EQ(validation_error(m),
+            "part.stl: inconsistent winding: 3 edges whose two triangles face opposite ways");
+}
+
+TEST(MeshValidate, FlatClosedSurfaceHasZeroVolume) {
+  TriangleMesh m;
+  m.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  m.triangles = {{0, 1, 2}, {0, 2, 1}};
+  EXPECT_EQ(validation_error(m), "part.stl: zero volume");
+}
+
+TEST(MeshValidate, InvertedSurfaceIsFlipped) {
+  TriangleMesh m = unit_cube();
+  for (Triangle& t : m.triangles) std::swap(t[0], t[2]);
+  EXPECT_DOUBLE_EQ(signed_volume(m), -1.0);
+  const MeshReport r = validate_mesh(m, "cube");
+  EXPECT_TRUE(r.flipped);
+  EXPECT_THAT(r.warnings, ElementsAre("inverted winding (negative volume): all triangles flipped"));
+  EXPECT_DOUBLE_EQ(signed_volume(m), 1.0);
+}
+
+TEST(MeshValidate, TinyParticleFarFromOriginLoads) {
+  // A 50 µm cube in metres, 1 m from the origin: every tolerance scales with the particle.
+  const double size = 5e-5;
+  TriangleMesh m = transformed(soup(unit_cube()), size, Vec3(1.0, -1.0, 0.5));
+  const MeshReport r = validate_mesh(m, "tiny");
+  EXPECT_EQ(r.welded_vertices, 28);
+  EXPECT_EQ(r.degenerate_triangles, 0);
+  EXPECT_FALSE(r.flipped);
+  EXPECT_NEAR(signed_volume(m), size * size * size, 1e-9 * size * size * size);
+}
+
+TEST(MeshValidate, LargeSoupIsWeldedQuickly) {
+  // A latitude-longitude sphere as a soup of 2·nu·(nv-1) triangles (about 120k vertex records): quadratic
+  // welding would take minutes.
+  const int nu = 200, nv = 100;
+  const double pi = std::acos(-1.0);
+  TriangleMesh sphere;
+  sphere.vertices.emplace_back(0, 0, 1);
+  for (int k = 1; k < nv; ++k) {
+    for (int i = 0; i < nu; ++i) {
+      const double theta = pi * k / nv, phi = 2 * pi * i / nu;
+      sphere.vertices.emplace_back(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                                   std::cos(theta));
+    }
+  }
+  sphere.vertices.emplace_back(0, 0, -1);
+  const std::int32_t south = nu * (nv - 1) + 1;
+  auto ring = [&](int k, int i) { return 1 + (k - 1) * nu + i % nu; };
+  for (int i = 0; i < nu; ++i) {
+    sphere.triangles.push_back({0, ring(1, i), ring(1, i + 1)});
+    sphere.triangles.push_back({south, ring(nv - 1, i + 1), ring(nv - 1, i)});
+    for (int k = 1; k < nv - 1; ++k) {
+      sphere.triangles.push_back({ring(k, i), ring(k + 1, i), ring(k + 1, i + 1)});
+      sphere.triangles.push_back({ring(k, i), ring(k + 1, i + 1), ring(k, i + 1)});
+    }
+  }
+  TriangleMesh m = soup(sphere);
+  const MeshReport r = validate_mesh(m, "sphere");
+  EXPECT_EQ(m.vertices.size(), sphere.vertices.size());
+  EXPECT_EQ(r.welded_vertices, static_cast<int>(3 * sphere.triangles.size() - sphere.vertices.size()));
+  EXPECT_EQ(r.degenerate_triangles, 0);
+  EXPECT_FALSE(r.flipped);
+  EXPECT_NEAR(signed_volume(m), 4.0 / 3.0 * pi, 0.01);  // inscribed polyhedron: slightly less
+}
+
+TEST(MeshSignedVolume, SignFollowsWinding) {
+  EXPECT_DOUBLE_EQ(signed_volume(transformed(unit_cube(), 2.0, Vec3(10, 20, 30))), 8.0);
+  EXPECT_EQ(signed_volume(TriangleMesh{}), 0.0);
+}
+
+}  // namespace
+}  // namespace repose

@@ -1,0 +1,386 @@
+#include "repose/io/mesh_io.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "repose/error.hpp"
+#include "repose/geometry/mesh.hpp"
+
+namespace repose {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+std::string data_file(const std::string& name) { return std::string(REPOSE_TEST_DATA) + "/" + name; }
+
+// The message of the repose::Error that reading (and, with `validate`, validating) throws.
+std::string load_error(const std::string& path, bool validate = false) {
+  try {
+    TriangleMesh m = read_mesh(path);
+    if (validate) validate_mesh(m, path);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+std::string data_error(const std::string& name, bool validate = false) {
+  return load_error(data_file(name), validate);
+}
+
+// A scratch directory per test for files too small or too odd to keep under tests/data.
+class MeshIoTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / ("repose_mesh_io_" + std::to_string(::getpid()) + "_" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, const std::string& content) const {
+    const std::string path = (dir_ / name).string();
+    std::ofstream(path, std::ios::binary) << content;
+    return path;
+  }
+
+  std::vector<std::string> listing() const {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir_)) names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+
+  fs::path dir_;
+};
+
+// ---------------------------------------------------------------------------------------------------------
+// Every supported format reads the unit cube.
+
+class ReadCube : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(ReadCube, HasUnitVolume) {
+  const std::string path = data_file(GetParam());
+  TriangleMesh m = read_mesh(path);
+  const MeshReport r = validate_mesh(m, path);
+  EXPECT_EQ(m.vertices.size(), 8u);
+  EXPECT_EQ(m.triangles.size(), 12u);
+  EXPECT_FALSE(r.flipped);
+  EXPECT_EQ(r.degenerate_triangles, 0);
+  EXPECT_DOUBLE_EQ(signed_volume(m), 1.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(MeshIo, ReadCube,
+                         ::testing::Values("cube_ascii.stl", "cube_binary.stl",
+                                           "cube_binary_solid_header.stl", "cube_binary_trailing.stl",
+                                           "cube.obj", "cube_groups.obj", "cube_ascii.ply", "cube_binary.ply",
+                                           "cube_binary_be.ply", "cube.off"));
+
+TEST(MeshIo, StlDuplicatesAreWeldedAndReported) {
+  TriangleMesh m = read_mesh(data_file("cube_binary.stl"));
+  EXPECT_EQ(m.vertices.size(), 36u);
+  const MeshReport r = validate_mesh(m, "cube_binary.stl");
+  EXPECT_EQ(r.welded_vertices, 28);
+  EXPECT_THAT(r.warnings, ::testing::ElementsAre("welded 28 duplicate vertices"));
+}
+
+TEST_F(MeshIoTest, ExtensionIsCaseInsensitive) {
+  const fs::path path = dir_ / "CUBE.STL";
+  fs::copy_file(data_file("cube_binary.stl"), path);
+  EXPECT_EQ(read_mesh(path.string()).triangles.size(), 12u);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Files that cannot be read at all.
+
+TEST(MeshIo, NonexistentFile) {
+  EXPECT_EQ(data_error("does_not_exist.stl"),
+            data_file("does_not_exist.stl") + ": cannot open: No such file or directory");
+}
+
+TEST(MeshIo, Directory) {
+  EXPECT_EQ(load_error(REPOSE_TEST_DATA), std::string(REPOSE_TEST_DATA) + ": cannot open: Is a directory");
+}
+
+TEST(MeshIo, EmptyFile) { EXPECT_EQ(data_error("empty.stl"), data_file("empty.stl") + ": empty file"); }
+
+TEST(MeshIo, UnknownExtension) {
+  EXPECT_EQ(data_error("unknown.xyz"),
+            data_file("unknown.xyz") + ": unsupported format '.xyz' (expected .stl, .obj, .ply, .off)");
+}
+
+TEST_F(MeshIoTest, NoExtension) {
+  EXPECT_THAT(load_error(write("cube", "solid x\nendsolid x\n")), HasSubstr("cube: unsupported format"));
+}
+
+TEST_F(MeshIoTest, AssimpParseErrorIsOneLine) {
+  const std::string path = write("bad.obj", "garbage\n");
+  EXPECT_THAT(load_error(path), AllOf(HasSubstr("bad.obj: cannot parse: "), Not(HasSubstr("\n"))));
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Headers that claim more than the file holds fail before anything is allocated.
+
+TEST(MeshIo, TruncatedBinaryStl) {
+  EXPECT_EQ(data_error("truncated.stl"),
+            data_file("truncated.stl") +
+                ": truncated binary STL: header claims 12 triangles (needs 684 bytes), file has 664 bytes");
+}
+
+TEST(MeshIo, BinaryStlClaimingTwoBillionFacets) {
+  // 84 + 50·2^31 wraps to 84 in 32-bit arithmetic, which would make this 84-byte file look consistent.
+  EXPECT_EQ(data_error("huge_count.stl"),
+            data_file("huge_count.stl") +
+                ": truncated binary STL: header claims 2147483648 triangles (needs 107374182484 bytes), file "
+                "has 84 bytes");
+}
+
+TEST_F(MeshIoTest, BinaryStlShorterThanHeader) {
+  EXPECT_THAT(load_error(write("short.stl", std::string(40, '\0'))),
+              HasSubstr("short.stl: truncated binary STL: file has 40 bytes, less than the 84-byte header"));
+}
+
+TEST_F(MeshIoTest, BinaryStlWithoutFacets) {
+  EXPECT_THAT(load_error(write("none.stl", std::string(84, '\0'))), HasSubstr("none.stl: no triangles"));
+}
+
+TEST(MeshIo, PlyClaimingBillionsOfElements) {
+  EXPECT_THAT(data_error("huge_vertices.ply"),
+              HasSubstr("huge_vertices.ply: PLY header claims 1000000000 'vertex' elements, more than the 6 "
+                        "bytes after it can hold"));
+  EXPECT_THAT(data_error("huge_faces_binary.ply"),
+              HasSubstr("huge_faces_binary.ply: PLY header claims 1000000000 'face' elements"));
+}
+
+TEST(MeshIo, OffClaimingBillionsOfElements) {
+  EXPECT_THAT(data_error("huge.off"),
+              HasSubstr("huge.off: OFF header claims 1000000000 vertices, more than"));
+}
+
+TEST(MeshIo, TruncatedPlyAndOff) {
+  EXPECT_THAT(data_error("truncated_ascii.ply"),
+              HasSubstr("truncated_ascii.ply: truncated PLY: file ends in 'face' element 7 of 7"));
+  EXPECT_THAT(data_error("truncated_binary.ply"),
+              HasSubstr("truncated_binary.ply: truncated PLY: file ends in 'face' element 12 of 12"));
+  EXPECT_THAT(data_error("truncated.off"),
+              HasSubstr("truncated.off: truncated OFF: file ends after 5 of 6 faces"));
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Malformed content that assimp would drop, clamp or misread silently.
+
+TEST(MeshIo, FaceIndexOutOfRange) {
+  EXPECT_EQ(data_error("bad_index.off"),
+            data_file("bad_index.off") + ": line 17: in face 6, vertex index 8 does not exist (8 vertices)");
+  EXPECT_EQ(data_error("bad_index.obj"),
+            data_file("bad_index.obj") + ": line 15: in face 6, vertex index 9 does not exist (8 vertices)");
+  EXPECT_EQ(data_error("bad_index.ply"),
+            data_file("bad_index.ply") + ": in face 6, vertex index 8 does not exist (8 vertices)");
+}
+
+TEST_F(MeshIoTest, ObjIndexForms) {
+  const std::string vertices = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n";
+  const std::string faces = "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n";
+  // Negative indices count back from the last vertex so far; texture and normal references are ignored.
+  TriangleMesh m = read_mesh(write("relative.obj", vertices + "vt 0 0\nvn 0 0 1\nf -4 -2 -3\nf 1/1 2/1 4/1\n"
+                                                              "f 2//1 3//1 4//1\nf 1/1/1 4/1/1 3/1/1\n"));
+  validate_mesh(m, "relative.obj");
+  EXPECT_NEAR(signed_volume(m), 1.0 / 6.0, 1e-12);
+  EXPECT_THAT(load_error(write("zero.obj", vertices + "f 0 1 2\n")),
+              HasSubstr("zero.obj: line 5: in face 1, vertex index 0 does not exist (4 vertices)"));
+  EXPECT_THAT(load_error(write("neg.obj", vertices + "f -1 -2 -5\n")),
+              HasSubstr("neg.obj: line 5: in face 1, vertex index -5 does not exist (4 vertices)"));
+  EXPECT_THAT(load_error(write("word.obj", vertices + "f 1 2 x\n")),
+              HasSubstr("word.obj: line 5: in face 1, cannot read vertex index 'x'"));
+  // Forward references are legal.
+  EXPECT_EQ(read_mesh(write("forward.obj", faces + vertices)).triangles.size(), 4u);
+}
+
+TEST_F(MeshIoTest, ObjVertexLinesAssimpWouldSkip) {
+  const std::string faces = "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n";
+  EXPECT_THAT(load_error(write("dot.obj", "v 0 0 0\nv .5 0 0\nv 0 1 0\nv 0 0 1\n" + faces)),
+              HasSubstr("dot.obj: line 2: cannot read vertex coordinate '.5'"));
+  EXPECT_THAT(load_error(write("five.obj", "v 0 0 0\nv 1 0 0 1 1\nv 0 1 0\nv 0 0 1\n" + faces)),
+              HasSubstr("five.obj: line 2: vertex with 5 numbers"));
+  EXPECT_THAT(load_error(write("indent.obj", "v 0 0 0\n  v 1 0 0\nv 0 1 0\nv 0 0 1\n" + faces)),
+              HasSubstr("indent.obj: line 2: indented 'v' line"));
+  EXPECT_THAT(load_error(write("comment.obj", "v 0 0 0\nv 1 0 0 # 4\nv 0 1 0\nv 0 0 1\n" + faces)),
+              HasSubstr("comment.obj: line 2: comment after 'v' data"));
+}
+
+TEST(MeshIo, ObjWithoutTriangles) {
+  EXPECT_EQ(data_error("lines_only.obj"), data_file("lines_only.obj") + ": no triangles");
+}
+
+TEST_F(MeshIoTest, OffMalformedLines) {
+  const std::string header = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+  EXPECT_THAT(load_error(write("neg.off", header + "3 0 2 1\n3 0 1 -1\n3 1 2 3\n3 0 3 2\n")),
+              HasSubstr("neg.off: line 8: in face 2, vertex index -1 does not exist (4 vertices)"));
+  EXPECT_THAT(load_error(write("big.off", header + "10 0 1 2 3 0 1 2 3 0 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n")),
+              HasSubstr("big.off: line 7: face 1 has 10 vertices (OFF faces may have 1 to 9)"));
+  const std::string faces = "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n";
+  EXPECT_THAT(load_error(write("comment.off", "OFF\n4 4 0\n0 0 0\n# x\n1 0 0\n0 1 0\n0 0 1\n" + faces)),
+              HasSubstr("comment.off: line 4: expected 3 coordinates of vertex 1"));
+  EXPECT_THAT(load_error(write("nokeyword.off", "4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n" + faces)),
+              HasSubstr("nokeyword.off: cannot parse: expected the OFF keyword, found '4'"));
+  EXPECT_THAT(load_error(write("sameline.off", "OFF\n4 4 0 0 0 0\n1 0 0\n0 1 0\n0 0 1\n" + faces)),
+              HasSubstr("sameline.off: line 2: unexpected '0'"));
+  // Comments (also before the keyword), blank lines and CRLF are fine where assimp accepts them.
+  const std::string ok =
+      write("ok.off",
+            "# tetrahedron\r\nOFF\r\n4 4 0 # counts\r\n\r\n# first vertex next\r\n0 0 0\r\n1 0 "
+            "0\r\n\r\n0 1 0\r\n0 0 1\r\n3 0 2 1\r\n3 0 1 3\r\n3 1 2 3\r\n3 0 3 2\r\n");
+  TriangleMesh m = read_mesh(ok);
+  validate_mesh(m, ok);
+  EXPECT_NEAR(signed_volume(m), 1.0 / 6.0, 1e-12);
+}
+
+TEST_F(MeshIoTest, AsciiStlFacetWithFourVertices) {
+  EXPECT_THAT(load_error(write("four.stl",
+                               "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                               "vertex 0 1 0\nvertex 1 1 0\nendloop\nendfacet\nendsolid x\n")),
+              HasSubstr("four.stl: facet 1 has 4 vertices (expected 3)"));
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Files that parse but are not valid solids: validate_mesh names the file and the problem.
+
+TEST(MeshIo, NonFiniteCoordinates) {
+  EXPECT_EQ(data_error("nan.stl", true), data_file("nan.stl") + ": vertex 2 has a non-finite coordinate");
+  EXPECT_EQ(data_error("nan.off", true), data_file("nan.off") + ": vertex 2 has a non-finite coordinate");
+  EXPECT_THAT(data_error("inf.obj", true), HasSubstr("inf.obj: vertex 5 has a non-finite coordinate"));
+}
+
+TEST(MeshIo, OpenSurface) {
+  EXPECT_EQ(
+      data_error("open_cube.off", true),
+      data_file("open_cube.off") + ": open surface: 4 boundary edges (the mesh must be a closed solid)");
+}
+
+TEST(MeshIo, NonManifoldSurface) {
+  EXPECT_EQ(
+      data_error("nonmanifold.off", true),
+      data_file("nonmanifold.off") + ": non-manifold surface: 1 edges shared by more than two triangles");
+}
+
+TEST(MeshIo, InconsistentWinding) {
+  EXPECT_EQ(data_error("flipped_face.off", true),
+            data_file("flipped_face.off") +
+                ": inconsistent winding: 3 edges whose two triangles face opposite ways");
+}
+
+TEST(MeshIo, ZeroVolume) { EXPECT_EQ(data_error("flat.off", true), data_file("flat.off") + ": zero volume"); }
+
+TEST(MeshIo, InvertedCubeIsFlipped) {
+  TriangleMesh m = read_mesh(data_file("inverted_cube.off"));
+  EXPECT_DOUBLE_EQ(signed_volume(m), -1.0);
+  const MeshReport r = validate_mesh(m, "inverted_cube.off");
+  EXPECT_TRUE(r.flipped);
+  EXPECT_THAT(r.warnings, ::testing::Contains("inverted winding (negative volume): all triangles flipped"));
+  EXPECT_DOUBLE_EQ(signed_volume(m), 1.0);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// write_stl.
+
+// Triangles as coordinate triples, each rotated to start at its smallest vertex, sorted.
+std::vector<std::array<std::array<double, 3>, 3>> canonical(const TriangleMesh& m) {
+  std::vector<std::array<std::array<double, 3>, 3>> out;
+  for (const Triangle& t : m.triangles) {
+    std::array<std::array<double, 3>, 3> tri;
+    for (int k = 0; k < 3; ++k) tri[k] = {m.vertices[t[k]].x(), m.vertices[t[k]].y(), m.vertices[t[k]].z()};
+    std::rotate(tri.begin(), std::min_element(tri.begin(), tri.end()), tri.end());
+    out.push_back(tri);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST_F(MeshIoTest, WriteThenReadGivesTheSameBox) {
+  // A 2 x 3 x 0.5 box whose coordinates are exact in float32.
+  TriangleMesh box = read_mesh(data_file("cube.off"));
+  for (Vec3& v : box.vertices) v = v.cwiseProduct(Vec3(2.0, 3.0, 0.5)) + Vec3(-1.0, 0.25, 4.0);
+  validate_mesh(box, "box");
+  const std::string path = (dir_ / "box.stl").string();
+  write("box.stl", "old content");  // replaced atomically
+  write_stl(box, path);
+  EXPECT_EQ(fs::file_size(path), 84u + 50u * 12u);
+  EXPECT_EQ(listing(), std::vector<std::string>{"box.stl"});  // no temporary left behind
+
+  TriangleMesh back = read_mesh(path);
+  const MeshReport r = validate_mesh(back, path);
+  EXPECT_FALSE(r.flipped);
+  EXPECT_EQ(canonical(back), canonical(box));
+  EXPECT_DOUBLE_EQ(signed_volume(back), 3.0);
+}
+
+TEST_F(MeshIoTest, WriteStlNormalsFaceOutward) {
+  TriangleMesh cube = read_mesh(data_file("cube.off"));
+  const std::string path = (dir_ / "cube.stl").string();
+  write_stl(cube, path);
+  std::ifstream in(path, std::ios::binary);
+  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(bytes.size(), 684u);
+  for (std::size_t t = 0; t < 12; ++t) {
+    float n[3], v[3];
+    std::memcpy(n, bytes.data() + 84 + 50 * t, sizeof n);
+    std::memcpy(v, bytes.data() + 84 + 50 * t + 12, sizeof v);
+    EXPECT_NEAR(Vec3(n[0], n[1], n[2]).norm(), 1.0, 1e-6);
+    // For the unit cube an outward normal points away from the centre.
+    EXPECT_GT(Vec3(n[0], n[1], n[2]).dot(Vec3(v[0], v[1], v[2]) - Vec3::Constant(0.5)), 0.0) << t;
+  }
+}
+
+TEST_F(MeshIoTest, WriteFailureLeavesNothingBehind) {
+  const TriangleMesh cube = read_mesh(data_file("cube.off"));
+  const std::string missing = (dir_ / "no_such_dir" / "out.stl").string();
+  EXPECT_THROW(
+      {
+        try {
+          write_stl(cube, missing);
+        } catch (const Error& e) {
+          EXPECT_EQ(std::string(e.what()), missing + ": cannot write: No such file or directory");
+          throw;
+        }
+      },
+      Error);
+  // Renaming over a directory fails after the temporary was written; it must be removed.
+  fs::create_directory(dir_ / "taken.stl");
+  const std::string taken = (dir_ / "taken.stl").string();
+  EXPECT_THROW(
+      {
+        try {
+          write_stl(cube, taken);
+        } catch (const Error& e) {
+          EXPECT_THAT(e.what(), HasSubstr(taken + ": cannot write: "));
+          throw;
+        }
+      },
+      Error);
+  EXPECT_EQ(listing(), std::vector<std::string>{"taken.stl"});
+}
+
+TEST(MeshIo, WriteRejectsBadIndices) {
+  TriangleMesh m;
+  m.vertices = {Vec3(0, 0, 0)};
+  m.triangles = {{0, 0, 1}};
+  EXPECT_THROW(write_stl(m, ::testing::TempDir() + "/never_written.stl"), Error);
+  EXPECT_FALSE(fs::exists(::testing::TempDir() + "/never_written.stl"));
+}
+
+}  // namespace
+}  // namespace repose
