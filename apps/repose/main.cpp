@@ -1,7 +1,7 @@
 // repose: predicts how a rigid particle settles on a flat wall and where it comes to rest.
 //
-// Exit codes: 0 success; 2 bad input (options, files, specs), with a one-line message on stderr; 1 an
-// unexpected internal error.
+// Exit codes: 0 success; 2 bad input (options, files, specs), with a one-line message on stderr; 3 a run
+// that ended without coming to rest (max-time or max-steps); 1 an unexpected internal error.
 #include <exception>
 #include <iostream>
 #include <vector>
@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "repose 0.1.0");
   const std::vector<repose::cli::Command> commands = {
       repose::cli::add_info_command(app),
+      repose::cli::add_settle_command(app),
   };
   try {
     app.parse(argc, argv);

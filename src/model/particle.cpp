@@ -6,6 +6,7 @@
 #include "repose/error.hpp"
 #include "repose/geometry/shapes.hpp"
 #include "repose/io/mesh_io.hpp"
+#include "surface_facts.hpp"
 
 namespace repose {
 
@@ -29,6 +30,11 @@ Particle make_particle(TriangleMesh mesh, const std::string& name, double densit
   p.length = characteristic_length(p.mass.volume);
   p.bounds = bounding_box(p.mesh.vertices);
   p.hull = compute_convex_hull(p.mesh.vertices);
+
+  compute_dihedral_facts(p.mesh, p.length, p.max_dihedral_angle, p.convex_surface);
+  for (const HullFace& face : p.hull.faces)
+    p.face_stability_margin.push_back(face_stability_margin(p.hull, face, Vec3::Zero()));
+  p.face_is_flat = faces_covered_by_mesh(p.mesh, p.hull, p.length);
   return p;
 }
 

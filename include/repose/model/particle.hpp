@@ -24,6 +24,16 @@ struct Particle {
   double length = 0;        ///< characteristic length L = volume-equivalent sphere diameter (6V/π)^(1/3)
   Aabb bounds;              ///< body-frame bounding box
   MeshReport report;        ///< what validation repaired
+
+  // Derived facts the settling engine and the rest-pose statistics use (computed once here).
+  double max_dihedral_angle = 0;  ///< largest angle between the normals of neighbouring triangles (rad)
+  bool convex_surface = false;    ///< no reflex (concave) edge
+  /// Per hull face: signed distance (length) from the centre of mass's projection onto the face plane to the
+  /// face boundary, positive inside. A face is a stable rest iff its margin is > 0 (static stability).
+  std::vector<double> face_stability_margin;
+  /// Per hull face: true if mesh triangles cover it (a flat face of the particle), false if only isolated
+  /// points of the particle lie on it (a jagged particle resting on its tips).
+  std::vector<bool> face_is_flat;
 };
 
 /// Builds a particle from a validated-or-not mesh: validates/repairs it, computes mass properties with the

@@ -1,0 +1,46 @@
+// Parameters of a settling run: units, gravity, damping, thresholds, time step, limits.
+//
+// Units: repose works in any consistent unit system; `gravity` fixes it. For --units si that is m, kg, s
+// (g = 9.81 m/s²); for --units cgs it is cm, g, s (g = 981 cm/s²). Thresholds are fractions of the
+// particle's characteristic length L, so they mean the same thing for a 50 µm grain and a 5 cm part.
+#pragma once
+
+#include <string>
+
+namespace repose {
+
+enum class UnitSystem { si, cgs };
+
+/// Standard gravity in the given unit system: 9.81 m/s² or 981 cm/s².
+double standard_gravity(UnitSystem units);
+
+/// How the particle's surface is treated (section 2.2 of the paper).
+enum class SmoothMode {
+  automatic,  ///< decide from the mesh: smooth if convex with every dihedral angle below 30°
+  on,         ///< always rotate about the single lowest point
+  off,        ///< point / line / surface contacts with the stability tests
+};
+
+struct SettleParams {
+  double gravity = 9.81;           ///< magnitude of g, length/time², along −z
+  double damping = 0.0;            ///< C in Eq 4, torque per angular velocity (mass·length²/time)
+  double dt = 0.0;                 ///< time step (time); 0 = automatic: 1e-3·sqrt(L/g)
+  double contact_threshold = 0.05; ///< ε as a fraction of L: points within ε·L of the wall are contacts
+  /// Line vs surface (Algorithm 1): the contact set is a line when the residual sum of squares of its best-fit
+  /// line is below this fraction of L². The paper's 0.1 (cm², for a particle of L ≈ 1 cm) is 0.1·L².
+  double line_threshold = 0.1;
+  SmoothMode smooth = SmoothMode::automatic;
+  double drop_height = 0.0;        ///< initial height of the lowest point above the wall (length)
+  double drop_speed = 0.0;         ///< initial downward speed (length/time), ≥ 0
+  double max_time = 0.0;           ///< simulated-time limit (time); 0 = automatic: 2000·sqrt(L/g) + fall time
+  long max_steps = 20'000'000;     ///< step limit
+  double quaternion_tolerance = 1e-8;  ///< convergence of the pseudo-time iteration (Eqs 12-16)
+  int max_iterations = 100;            ///< bound on pseudo-time iterations per step
+  /// A smooth particle rests once its kinetic energy stays below this fraction of m·g·L.
+  double smooth_rest_energy = 1e-9;
+};
+
+/// Throws repose::Error naming the offending parameter if any is non-finite or out of range.
+void validate(const SettleParams& params);
+
+}  // namespace repose

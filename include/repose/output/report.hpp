@@ -1,0 +1,24 @@
+// Serialising settling runs: the JSON summary and the time-series CSV.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "repose/model/params.hpp"
+#include "repose/model/particle.hpp"
+#include "repose/sim/settle.hpp"
+
+namespace repose {
+
+/// The JSON summary of one run (field names are stable; see docs/settle.md):
+/// status, time_to_rest, steps, max_penetration, rest {orientation [w,x,y,z], com, contact, contact_points,
+/// down_normal_body, face}, phases [{contact, t0, t1}], energy {start, end}, plus the particle and parameters.
+std::string settle_summary_json(const Particle& particle, const SettleParams& params, const Quat& initial,
+                                const SettleResult& result);
+
+/// The CSV header of the time series.
+std::string time_series_header();
+/// One CSV row: t, qw, qx, qy, qz, wx, wy, wz, x, y, z, contact, contact_count, kinetic, potential.
+std::string time_series_row(const Sample& s);
+
+}  // namespace repose

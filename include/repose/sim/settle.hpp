@@ -1,0 +1,106 @@
+// The settling engine: sections 2.1-2.4 of Daghooghi & Borazjani (PLoS ONE 16(2): e0243716, 2021).
+//
+// A particle falls under gravity (−z) onto the wall z = 0, then rotates about its contact point or contact
+// line until a stability test says it rests. Two ways to use it:
+//   - settle(particle, params, orientation) runs to the end and returns a SettleResult;
+//   - Settler advances one step at a time, for a DEM code that owns the loop or wants every sample.
+// The Particle is shared read-only; a Settler is the small per-run state (MuJoCo's mjModel / mjData split).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "repose/geometry/types.hpp"
+#include "repose/model/params.hpp"
+#include "repose/model/particle.hpp"
+
+namespace repose {
+
+/// The contact type of section 2.2 (Algorithm 1), from the points within ε of the wall.
+enum class ContactType { free_fall, point, line, surface };
+
+/// How a run ended. `running` only while a Settler is still stepping.
+enum class Status { running, rest, max_time, max_steps };
+
+/// What the particle rests on: a planar face of its convex hull ("surface", flush with the wall), a set of
+/// isolated support points forming a hull face ("points", e.g. a jagged particle on its tips), or the bottom of
+/// a smooth particle ("smooth").
+enum class RestKind { none, surface, points, smooth };
+
+const char* to_string(ContactType type);
+const char* to_string(Status status);
+const char* to_string(RestKind kind);
+
+/// One instant of a run, as reported to observers and written to the time-series CSV.
+struct Sample {
+  double t = 0;                   ///< time
+  Quat orientation;               ///< body → world rotation
+  Vec3 omega = Vec3::Zero();      ///< angular velocity, world frame (rad/time)
+  Vec3 com = Vec3::Zero();        ///< centre of mass, world frame
+  ContactType contact = ContactType::free_fall;
+  int contact_count = 0;          ///< hull vertices within ε of the wall
+  double kinetic_energy = 0;      ///< translational + rotational
+  double potential_energy = 0;    ///< m·g·z_com
+};
+
+/// A phase of constant contact type, [t0, t1].
+struct Phase {
+  ContactType contact = ContactType::free_fall;
+  double t0 = 0;
+  double t1 = 0;
+};
+
+struct SettleResult {
+  Status status = Status::running;
+  double time = 0;                   ///< time to rest (or when the run stopped)
+  long steps = 0;
+  double max_penetration = 0;        ///< largest depth of any vertex below the wall over the run (length)
+  Quat orientation = Quat::Identity();
+  Vec3 com = Vec3::Zero();
+  RestKind rest = RestKind::none;
+  int rest_face = -1;                ///< index of the hull face the particle rests on, −1 if none
+  std::vector<Vec3> contact_points;  ///< world coordinates of the supporting points at rest
+  Vec3 down_normal_body = Vec3::Zero();  ///< body-frame unit direction pointing at the wall at the end
+  std::vector<Phase> phases;
+  double energy_start = 0;           ///< kinetic + potential at t = 0
+  double energy_end = 0;
+  bool smooth = false;               ///< whether the particle was treated as smooth
+  double dt = 0;                     ///< the time step used
+  long unconverged_steps = 0;        ///< steps whose pseudo-time iteration hit max_iterations
+};
+
+/// Whether SmoothMode::automatic treats this particle as smooth: convex everywhere with every dihedral angle
+/// between neighbouring triangles below 30°.
+bool is_smooth_surface(const Particle& particle);
+
+/// The step-wise engine. Construct, then call step() until it returns false.
+class Settler {
+ public:
+  /// Starts a run with the particle at `orientation` (body → world). The lowest point is placed at height
+  /// params.drop_height above the wall, directly above the origin. Throws repose::Error for invalid params.
+  Settler(const Particle& particle, const SettleParams& params, const Quat& orientation);
+  ~Settler();
+  Settler(Settler&&) noexcept;
+  Settler& operator=(Settler&&) noexcept;
+
+  /// Advances one time step (shorter if an event is located inside it). Returns false once the run has ended.
+  bool step();
+  /// Runs to the end, calling `observer` (if any) after every step, including the initial state.
+  SettleResult run(const std::function<void(const Sample&)>& observer = {});
+
+  Sample sample() const;           ///< the current instant
+  Status status() const;
+  SettleResult result() const;     ///< the summary so far (final once status() != running)
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Runs one settling simulation to the end.
+SettleResult settle(const Particle& particle, const SettleParams& params, const Quat& orientation,
+                    const std::function<void(const Sample&)>& observer = {});
+
+}  // namespace repose

@@ -1,0 +1,39 @@
+#include "repose/model/params.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "repose/error.hpp"
+
+namespace repose {
+
+double standard_gravity(UnitSystem units) { return units == UnitSystem::si ? 9.81 : 981.0; }
+
+namespace {
+void require(bool ok, const char* name, double value, const char* what) {
+  if (!ok) throw Error(std::string("parameter ") + name + " must be " + what + ", got " + std::to_string(value));
+}
+}  // namespace
+
+void validate(const SettleParams& p) {
+  require(std::isfinite(p.gravity) && p.gravity > 0, "gravity", p.gravity, "a finite positive number");
+  require(std::isfinite(p.damping) && p.damping >= 0, "damping", p.damping, "a finite number >= 0");
+  require(std::isfinite(p.dt) && p.dt >= 0, "dt", p.dt, "a finite positive number (or 0 for automatic)");
+  require(std::isfinite(p.contact_threshold) && p.contact_threshold > 0 && p.contact_threshold < 1,
+          "contact-threshold", p.contact_threshold, "a fraction of L in (0, 1)");
+  require(std::isfinite(p.line_threshold) && p.line_threshold > 0, "line-threshold", p.line_threshold,
+          "a finite positive fraction of L^2");
+  require(std::isfinite(p.drop_height) && p.drop_height >= 0, "drop-height", p.drop_height,
+          "a finite number >= 0");
+  require(std::isfinite(p.drop_speed) && p.drop_speed >= 0, "drop-speed", p.drop_speed, "a finite number >= 0");
+  require(std::isfinite(p.max_time) && p.max_time >= 0, "max-time", p.max_time,
+          "a finite positive number (or 0 for automatic)");
+  require(p.max_steps > 0, "max-steps", static_cast<double>(p.max_steps), "positive");
+  require(std::isfinite(p.quaternion_tolerance) && p.quaternion_tolerance > 0, "quaternion-tolerance",
+          p.quaternion_tolerance, "a finite positive number");
+  require(p.max_iterations > 0, "max-iterations", p.max_iterations, "positive");
+  require(std::isfinite(p.smooth_rest_energy) && p.smooth_rest_energy > 0, "smooth-rest-energy",
+          p.smooth_rest_energy, "a finite positive number");
+}
+
+}  // namespace repose

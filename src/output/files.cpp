@@ -1,0 +1,44 @@
+#include "repose/output/files.hpp"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <system_error>
+
+#include "repose/error.hpp"
+
+namespace repose {
+
+void write_file_atomically(const std::string& path, const std::string& content) {
+  namespace fs = std::filesystem;
+  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (!f) throw Error(path + ": cannot write: " + std::strerror(errno));
+  const bool written = std::fwrite(content.data(), 1, content.size(), f) == content.size();
+  const int saved_errno = errno;
+  const bool closed = std::fclose(f) == 0;
+  if (!written || !closed) {
+    std::remove(tmp.c_str());
+    throw Error(path + ": cannot write: " + std::strerror(written ? errno : saved_errno));
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    std::remove(tmp.c_str());
+    throw Error(path + ": cannot write: " + ec.message());
+  }
+}
+
+void ensure_output_directory(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(dir, ec)) fs::create_directories(dir, ec);
+  if (ec) throw Error(dir + ": cannot create output directory: " + ec.message());
+  if (!fs::is_directory(dir, ec)) throw Error(dir + ": not a directory");
+  if (::access(dir.c_str(), W_OK) != 0) throw Error(dir + ": output directory is not writable");
+}
+
+}  // namespace repose

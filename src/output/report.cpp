@@ -1,0 +1,63 @@
+#include "repose/output/report.hpp"
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+namespace repose {
+
+namespace {
+nlohmann::json vec_json(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+nlohmann::json quat_json(const Quat& q) { return {q.w(), q.x(), q.y(), q.z()}; }
+}  // namespace
+
+std::string settle_summary_json(const Particle& particle, const SettleParams& params, const Quat& initial,
+                                const SettleResult& r) {
+  nlohmann::json j;
+  j["particle"] = {{"source", particle.name},
+                   {"mass", particle.mass.mass},
+                   {"volume", particle.mass.volume},
+                   {"characteristic_length", particle.length},
+                   {"smooth", r.smooth}};
+  j["parameters"] = {{"gravity", params.gravity},
+                     {"damping", params.damping},
+                     {"dt", r.dt},
+                     {"contact_threshold", params.contact_threshold},
+                     {"line_threshold", params.line_threshold},
+                     {"drop_height", params.drop_height},
+                     {"initial_orientation", quat_json(initial)}};
+  j["status"] = to_string(r.status);
+  j["time_to_rest"] = r.status == Status::rest ? nlohmann::json(r.time) : nlohmann::json(nullptr);
+  j["time"] = r.time;
+  j["steps"] = r.steps;
+  j["max_penetration"] = r.max_penetration;
+  nlohmann::json points = nlohmann::json::array();
+  for (const Vec3& p : r.contact_points) points.push_back(vec_json(p));
+  j["rest"] = {{"orientation", quat_json(r.orientation)},
+               {"com", vec_json(r.com)},
+               {"contact", r.rest == RestKind::none ? "none" : to_string(r.rest)},
+               {"contact_points", points},
+               {"down_normal_body", vec_json(r.down_normal_body)},
+               {"face", r.rest_face}};
+  nlohmann::json phases = nlohmann::json::array();
+  for (const Phase& p : r.phases) phases.push_back({{"contact", to_string(p.contact)}, {"t0", p.t0}, {"t1", p.t1}});
+  j["phases"] = phases;
+  j["energy"] = {{"start", r.energy_start}, {"end", r.energy_end}};
+  j["unconverged_steps"] = r.unconverged_steps;
+  return j.dump(2) + "\n";
+}
+
+std::string time_series_header() {
+  return "t,qw,qx,qy,qz,omega_x,omega_y,omega_z,com_x,com_y,com_z,contact,contact_count,kinetic_energy,"
+         "potential_energy\n";
+}
+
+std::string time_series_row(const Sample& s) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, "%.9g,%.12g,%.12g,%.12g,%.12g,%.9g,%.9g,%.9g,%.12g,%.12g,%.12g,%s,%d,%.9g,%.12g\n",
+                s.t, s.orientation.w(), s.orientation.x(), s.orientation.y(), s.orientation.z(), s.omega.x(),
+                s.omega.y(), s.omega.z(), s.com.x(), s.com.y(), s.com.z(), to_string(s.contact), s.contact_count,
+                s.kinetic_energy, s.potential_energy);
+  return buf;
+}
+
+}  // namespace repose

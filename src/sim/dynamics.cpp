@@ -1,0 +1,70 @@
+#include "dynamics.hpp"
+
+namespace repose::sim {
+
+namespace {
+// dq/dt = ½ ω ⊗ q with ω in the world frame (Eq 9; q maps body to world).
+Eigen::Vector4d quaternion_rate(const Quat& q, const Vec3& w) {
+  const Quat wq = Quat(0, w.x(), w.y(), w.z()) * q;
+  return 0.5 * wq.coeffs();
+}
+
+Vec3 project_on_axis(const Support& s, const Vec3& v) { return s.line ? Vec3(v.dot(s.axis) * s.axis) : v; }
+}  // namespace
+
+Vec3 com_position(const Support& s, const Quat& q) { return s.world - q * s.body; }
+
+Mat3 inertia_about_support(const Body& body, const Support& s, const Quat& q) {
+  const Mat3 R = q.toRotationMatrix();
+  const Vec3 r = -(R * s.body);  // support → centre of mass
+  return R * body.inertia * R.transpose() +
+         body.mass * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
+}
+
+Vec3 omega_from_momentum(const Body& body, const Support& s, const Quat& q, const Vec3& momentum) {
+  const Mat3 I = inertia_about_support(body, s, q);
+  if (s.line) {
+    // A rotation constrained to the axis e has ω = ω_e·e, and its momentum component is eᵀ I e · ω_e.
+    return (momentum.dot(s.axis) / s.axis.dot(I * s.axis)) * s.axis;
+  }
+  return I.ldlt().solve(momentum);
+}
+
+Vec3 moment(const Body& body, const Support& s, const Quat& q, const Vec3& omega) {
+  const Vec3 r = -(q * s.body);
+  const Vec3 weight(0, 0, -body.mass * body.gravity);
+  return project_on_axis(s, r.cross(weight) - body.damping * omega);
+}
+
+int rotate_step(const Body& body, const Support& s, const Rotation& now, double dt, double tolerance,
+                int max_iterations, Rotation& next) {
+  const Vec3 moment_now = moment(body, s, now.q, now.omega);
+  const Eigen::Vector4d rate_now = quaternion_rate(now.q, now.omega);
+  next = now;
+  for (int it = 1; it <= max_iterations; ++it) {
+    const Vec3 momentum =
+        project_on_axis(s, now.momentum) + 0.5 * dt * (moment_now + moment(body, s, next.q, next.omega));
+    Eigen::Vector4d coeffs = now.q.coeffs() + 0.5 * dt * (rate_now + quaternion_rate(next.q, next.omega));
+    coeffs.normalize();
+    const double change = (coeffs - next.q.coeffs()).norm();
+    next.q.coeffs() = coeffs;
+    next.momentum = momentum;
+    next.omega = omega_from_momentum(body, s, next.q, momentum);
+    if (change < tolerance) return it;
+  }
+  return max_iterations;
+}
+
+Vec3 momentum_after_switch(const Body& body, const Quat& q, const Vec3& com, const Vec3& omega,
+                           const Vec3& com_velocity, const Support& next) {
+  const Mat3 R = q.toRotationMatrix();
+  const Vec3 spin = R * body.inertia * R.transpose() * omega;
+  const Vec3 momentum = spin + body.mass * (com - next.world).cross(com_velocity);
+  return project_on_axis(next, momentum);
+}
+
+double rotational_energy(const Body& body, const Support& s, const Quat& q, const Vec3& omega) {
+  return 0.5 * omega.dot(inertia_about_support(body, s, q) * omega);
+}
+
+}  // namespace repose::sim

@@ -1,0 +1,604 @@
+// The settling stepper: free fall, contact detection, rotation phases, stability and rest (paper §2.1-2.4).
+//
+// Two sets of points drive the method, both over the convex hull's vertices (only they can touch a flat
+// wall):
+//   - the contact set (the paper's): vertices within ε of the wall; it gives the contact type (Algorithm 1),
+//     the best-fit rotation axis, and the stability tests of §2.4;
+//   - the touching set: vertices on the wall (within 1e-9·L). The rotation always keeps its support point on
+//     the wall, and no vertex may pass below it: every new touch is located inside the step by bisection.
+// When the paper's stability test fires, the run finishes the rotation on touching points alone until they
+// hold the centre of mass, then sets the supporting hull face exactly flush: the rest is a true equilibrium.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <cstdio>
+#include <cstdlib>
+
+#include "contact.hpp"
+#include "dynamics.hpp"
+#include "repose/error.hpp"
+#include "repose/sim/settle.hpp"
+#include "stability.hpp"
+
+namespace repose {
+
+const char* to_string(ContactType type) {
+  switch (type) {
+    case ContactType::free_fall: return "free-fall";
+    case ContactType::point: return "point";
+    case ContactType::line: return "line";
+    case ContactType::surface: return "surface";
+  }
+  return "?";
+}
+
+const char* to_string(Status status) {
+  switch (status) {
+    case Status::running: return "running";
+    case Status::rest: return "rest";
+    case Status::max_time: return "max-time";
+    case Status::max_steps: return "max-steps";
+  }
+  return "?";
+}
+
+const char* to_string(RestKind kind) {
+  switch (kind) {
+    case RestKind::none: return "none";
+    case RestKind::surface: return "surface";
+    case RestKind::points: return "points";
+    case RestKind::smooth: return "smooth";
+  }
+  return "?";
+}
+
+bool is_smooth_surface(const Particle& particle) {
+  return particle.convex_surface && particle.max_dihedral_angle < std::numbers::pi / 6;
+}
+
+namespace {
+constexpr int kBisections = 48;  // locates an event to 2^-48 of a step: far below 1e-9·L of motion
+}  // namespace
+
+struct Settler::Impl {
+  const Particle& particle;
+  SettleParams params;
+  sim::Body body;
+  double length = 0;          // L
+  double band = 0;            // ε (length)
+  double touch_tol = 0;       // a vertex this close to the wall is touching it
+  double event_tol = 0;       // a vertex this far below the wall triggers a touch event
+  double rss_threshold = 0;   // Algorithm 1 line/surface threshold (length²)
+  double dt = 0;
+  double max_time = 0;
+  bool smooth = false;
+  double hull_radius = 0;     // largest distance of a hull vertex from the centre of mass
+  double reach_radius = 0;    // largest distance of a hull vertex from the current support
+
+  // Per-run state.
+  double t = 0;
+  long steps = 0;
+  Status status = Status::running;
+  bool falling = false;
+  double fall_speed = 0;  // downward
+  double lowest_body_height = 0;  // min over hull vertices of (R p).z, constant while falling
+  Quat q = Quat::Identity();
+  Vec3 com = Vec3::Zero();
+  sim::Support support;
+  sim::Rotation rot;
+  int support_vertex = -1;
+  bool finishing = false;
+  bool has_prev_axis = false;
+  Vec3 prev_axis = Vec3::UnitX();
+  ContactType type = ContactType::free_fall;
+  std::vector<double> z;      // world heights of the hull vertices
+  std::vector<int> contact;   // hull vertices within ε
+  std::vector<int> touching;  // hull vertices on the wall
+  std::vector<char> in_contact;
+  bool contact_changed = true;  // the contact set differs from the previous step's
+  double quiet_since = -1;      // smooth particles: since when the rest conditions have held (−1: not)
+  std::vector<Phase> phases;
+  double max_penetration = 0;
+  double energy_start = 0;
+  long unconverged = 0;
+  RestKind rest = RestKind::none;
+  int rest_face = -1;
+  std::vector<Vec3> rest_points;
+
+  Impl(const Particle& p, const SettleParams& prm, const Quat& orientation) : particle(p), params(prm) {
+    validate(params);
+    if (!std::isfinite(orientation.norm()) || orientation.norm() < 1e-12)
+      throw Error("orientation must be a finite non-zero quaternion");
+    body = {p.mass.mass, p.mass.inertia, params.gravity, params.damping};
+    length = p.length;
+    band = params.contact_threshold * length;
+    touch_tol = 1e-9 * length;
+    event_tol = 1e-12 * length;
+    rss_threshold = params.line_threshold * length * length;
+    const double time_scale = std::sqrt(length / params.gravity);
+    dt = params.dt > 0 ? params.dt : 1e-3 * time_scale;
+    const double fall_time =
+        (std::sqrt(params.drop_speed * params.drop_speed + 2 * params.gravity * params.drop_height)) /
+        params.gravity;
+    max_time = params.max_time > 0 ? params.max_time : 2000 * time_scale + fall_time;
+    smooth = params.smooth == SmoothMode::on ||
+             (params.smooth == SmoothMode::automatic && is_smooth_surface(p));
+
+    q = orientation.normalized();
+    const std::size_t n = p.hull.vertices.size();
+    for (const Vec3& v : p.hull.vertices) hull_radius = std::max(hull_radius, v.norm());
+    z.resize(n);
+    in_contact.resize(n);
+    lowest_body_height = INFINITY;
+    for (const Vec3& v : p.hull.vertices) lowest_body_height = std::min(lowest_body_height, (q * v).z());
+    com = Vec3(0, 0, params.drop_height - lowest_body_height);
+    energy_start = 0.5 * body.mass * params.drop_speed * params.drop_speed + potential_energy();
+    if (params.drop_height > 0) {
+      falling = true;
+      fall_speed = params.drop_speed;
+      phases.push_back({ContactType::free_fall, 0, 0});
+    } else {
+      begin_contact(Vec3(0, 0, -params.drop_speed));
+    }
+  }
+
+  double potential_energy() const { return body.mass * params.gravity * com.z(); }
+
+  double kinetic_energy() const {
+    if (falling) return 0.5 * body.mass * fall_speed * fall_speed;
+    if (status == Status::rest) return 0;
+    return sim::rotational_energy(body, support, rot.q, rot.omega);
+  }
+
+  Vec3 world_vertex(int k) const { return support.world + q * (particle.hull.vertices[k] - support.body); }
+
+  // Heights of all hull vertices for orientation `qq` about the current support (only the third row of R).
+  void heights(const Quat& qq, std::vector<double>& out) const {
+    const Vec3 r3 = qq.toRotationMatrix().row(2).transpose();
+    const auto& verts = particle.hull.vertices;
+    for (std::size_t k = 0; k < verts.size(); ++k) out[k] = support.world.z() + r3.dot(verts[k] - support.body);
+  }
+
+  // ---- free fall -------------------------------------------------------------------------------------------
+
+  void fall_step() {
+    const double h = com.z() + lowest_body_height;  // height of the lowest point
+    const double g = params.gravity;
+    const double touch = (-fall_speed + std::sqrt(fall_speed * fall_speed + 2 * g * std::max(h, 0.0))) / g;
+    const double step = std::min(dt, touch);
+    t += step;
+    ++steps;
+    if (step == touch) {
+      com.z() = -lowest_body_height;  // exactly touching
+      fall_speed += g * step;
+      begin_contact(Vec3(0, 0, -fall_speed));
+    } else {
+      com.z() -= fall_speed * step + 0.5 * g * step * step;
+      fall_speed += g * step;
+    }
+  }
+
+  // First touch (or the start of a run at drop height 0): translation stops and the particle pivots about its
+  // lowest point; the impact conserves angular momentum about the new support.
+  void begin_contact(const Vec3& com_velocity) {
+    falling = false;
+    int lowest = 0;
+    for (std::size_t k = 0; k < particle.hull.vertices.size(); ++k)
+      if ((q * particle.hull.vertices[k]).z() < (q * particle.hull.vertices[lowest]).z()) lowest = static_cast<int>(k);
+    const Vec3 p = particle.hull.vertices[lowest];
+    support = {Vec3(com.x() + (q * p).x(), com.y() + (q * p).y(), 0.0), p, false, Vec3::UnitX()};
+    support_vertex = lowest;
+    reach_radius = hull_radius + support.body.norm();
+    com = sim::com_position(support, q);
+    rot = {q, Vec3::Zero(), Vec3::Zero()};
+    update_contacts(Vec3::Zero(), com_velocity);
+  }
+
+  // ---- rotation --------------------------------------------------------------------------------------------
+
+  // Whether vertex k, now at height zk, has (since the start of the step) passed below the wall, or entered the
+  // ε band. Below-the-wall is measured from where the vertex started, so a vertex that already touches within
+  // round-off does not re-trigger at once.
+  bool pierces(std::size_t k, double zk) const { return zk < std::min(z[k], 0.0) - event_tol; }
+  bool enters_band(std::size_t k, double zk) const {
+    return !smooth && !finishing && !in_contact[k] && zk <= band;
+  }
+
+  // Heights of the listed vertices after a rotation to `qq`; true if any of them pierced or entered the band.
+  bool event_at(const Quat& qq, const std::vector<int>& candidates, bool& pierced) const {
+    const Vec3 r3 = qq.toRotationMatrix().row(2).transpose();
+    bool event = false;
+    pierced = false;
+    for (int k : candidates) {
+      const double zk = support.world.z() + r3.dot(particle.hull.vertices[k] - support.body);
+      pierced = pierced || pierces(k, zk);
+      event = event || pierced || enters_band(k, zk);
+    }
+    return event;
+  }
+
+  void rotate() {
+    sim::Rotation next;
+    int iterations = sim::rotate_step(body, support, rot, dt, params.quaternion_tolerance, params.max_iterations, next);
+    double taken = dt;
+
+    // Eq 2's idea, the bounding test that gates the exact distance query: a vertex can only cause an event
+    // inside this step if it ends it, or starts it, within the arc length the step can sweep of the levels.
+    std::vector<double> zz(z.size());
+    heights(next.q, zz);
+    const double swept = 2 * std::acos(std::min(1.0, std::abs(rot.q.dot(next.q)))) * reach_radius;
+    const double level = smooth ? 0.0 : band;
+    std::vector<int> candidates;
+    bool event = false;
+    for (std::size_t k = 0; k < zz.size(); ++k) {
+      if (std::min(z[k], zz[k]) <= level + swept + event_tol) candidates.push_back(static_cast<int>(k));
+      event = event || pierces(k, zz[k]) || enters_band(k, zz[k]);
+    }
+
+    if (event) {
+      // Bisect for the earliest instant at which an event holds (to 2^-48 of the step).
+      double lo = 0, hi = dt;
+      sim::Rotation lo_state = rot, hi_state = next;
+      int lo_iterations = 0;
+      bool hi_pierced = true, pierced = false;
+      event_at(next.q, candidates, hi_pierced);
+      for (int i = 0; i < kBisections; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        sim::Rotation trial;
+        const int it = sim::rotate_step(body, support, rot, mid, params.quaternion_tolerance, params.max_iterations, trial);
+        if (event_at(trial.q, candidates, pierced)) {
+          hi = mid;
+          hi_state = trial;
+          hi_pierced = pierced;
+          iterations = it;
+        } else {
+          lo = mid;
+          lo_state = trial;
+          lo_iterations = it;
+        }
+      }
+      // A vertex entering the band: take the instant just after (it is then inside). A vertex reaching the
+      // wall: take the instant just before, so it touches from above (within event_tol) and never pierces.
+      next = hi_pierced ? lo_state : hi_state;
+      taken = hi_pierced ? lo : hi;
+      if (hi_pierced) iterations = lo_iterations;
+    }
+    if (iterations >= params.max_iterations) ++unconverged;
+    const Vec3 omega_before = next.omega;
+    rot = next;
+    q = rot.q;
+    com = sim::com_position(support, q);
+    t += taken;
+    ++steps;
+    update_contacts(omega_before, omega_before.cross(com - support.world));
+  }
+
+  // ---- contacts, stability and supports --------------------------------------------------------------------
+
+  // Recomputes the contact and touching sets, checks for rest, and switches the support if the contacts call
+  // for another one. `omega` and `com_velocity` are the motion just before (for the impact law).
+  void update_contacts(const Vec3& omega, const Vec3& com_velocity) {
+    heights(q, z);
+    const std::vector<int> previous_contact = contact;
+    contact.clear();
+    touching.clear();
+    double lowest = INFINITY;
+    for (std::size_t k = 0; k < z.size(); ++k) {
+      lowest = std::min(lowest, z[k]);
+      // A little hysteresis keeps a point that sits on the band's edge (on a rotation axis) from flickering
+      // in and out of the contact set with round-off.
+      in_contact[k] = z[k] <= (in_contact[k] ? band + 1e-9 * length : band);
+      if (in_contact[k]) contact.push_back(static_cast<int>(k));
+      if (z[k] <= touch_tol) touching.push_back(static_cast<int>(k));
+    }
+    max_penetration = std::max(max_penetration, -lowest);
+    contact_changed = contact != previous_contact;
+
+    std::vector<Vec3> contact_points;
+    for (int k : contact) contact_points.push_back(world_vertex(k));
+    sim::LineFit fit;
+    const ContactType new_type =
+        smooth ? ContactType::point : sim::classify_contact(contact_points, rss_threshold, &fit);
+    set_type(new_type);
+
+    const Vec2 g(com.x(), com.y());
+    if (smooth) {
+      // Rest once the kinetic energy has stayed small, with the weight's line of action inside the contact
+      // polygon, for 10 time steps (so a turning point of a large swing, where ω passes through zero, is not
+      // mistaken for rest).
+      const bool quiet =
+          kinetic_energy_of(omega) < params.smooth_rest_energy * body.mass * params.gravity * length &&
+          contact_polygon_margin(contact_points, g) > 0;
+      // Three or more points on the wall around the centre of mass: the discretised surface has landed on a
+      // face and the inelastic impact leaves no motion (this also ends the ever-faster rocking between the
+      // corners of the bottom face).
+      if (touching.size() >= 3 && touching_points_hold(g) && come_to_rest()) return;
+      if (!quiet) {
+        quiet_since = -1;
+      } else if (quiet_since < 0) {
+        quiet_since = t;
+      } else if (t - quiet_since >= 10 * dt && come_to_rest()) {
+        return;
+      }
+    } else {
+      if (touching_points_hold(g) && come_to_rest()) return;
+      if (!finishing && paper_stability_test(contact_points, g)) finishing = true;
+    }
+    choose_support(fit, g, omega, com_velocity);
+    if (std::getenv("REPOSE_TRACE"))
+      std::fprintf(stderr, "t=%.9g type=%s contact=%zu touching=%zu finishing=%d support=%d line=%d axis=%g,%g,%g omega=%g,%g,%g\n", t,
+                   to_string(type), contact.size(), touching.size(), finishing, support_vertex, support.line,
+                   support.axis.x(), support.axis.y(), support.axis.z(), rot.omega.x(), rot.omega.y(), rot.omega.z());
+  }
+
+  double kinetic_energy_of(const Vec3& omega) const {
+    return sim::rotational_energy(body, support, q, omega);
+  }
+
+  void set_type(ContactType new_type) {
+    if (!phases.empty() && phases.back().contact == new_type) return;
+    if (!phases.empty()) phases.back().t1 = t;
+    phases.push_back({new_type, t, t});
+    type = new_type;
+  }
+
+  std::vector<Vec2> touching_polygon() const {
+    std::vector<Vec2> pts;
+    for (int k : touching) {
+      const Vec3 w = world_vertex(k);
+      pts.emplace_back(w.x(), w.y());
+    }
+    return sim::convex_hull_2d(pts, touch_tol);
+  }
+
+  // Static equilibrium on the wall: the touching points surround the centre of mass's projection (or it lies on
+  // their segment, a balanced edge).
+  bool touching_points_hold(const Vec2& g) const {
+    if (touching.size() < 2) return false;
+    const std::vector<Vec2> poly = touching_polygon();
+    return poly.size() >= 2 && sim::polygon_margin(poly, g) > -touch_tol;
+  }
+
+  // §2.4: a contact element (a hull face all of whose vertices are contacts) hit by the downward ray from the
+  // centre of mass, or the centre of mass's projection inside the polygon of contact points. Either suffices.
+  bool paper_stability_test(const std::vector<Vec3>& contact_points, const Vec2& g) const {
+    if (contact.size() < 3) return false;
+    const Vec3 down(0, 0, -1);
+    for (const HullFace& face : particle.hull.faces) {
+      bool element = true;
+      for (int k : face.loop) element = element && in_contact[k];
+      if (!element) continue;
+      const Vec3 a = world_vertex(face.loop[0]);
+      for (std::size_t i = 1; i + 1 < face.loop.size(); ++i)
+        if (sim::ray_hits_triangle(com, down, a, world_vertex(face.loop[i]), world_vertex(face.loop[i + 1])))
+          return true;
+    }
+    return contact_polygon_margin(contact_points, g) > 0;
+  }
+
+  // Signed distance of the centre of mass's projection inside the 2-D hull of the contact points (negative
+  // outside, or when the points do not span a polygon).
+  double contact_polygon_margin(const std::vector<Vec3>& contact_points, const Vec2& g) const {
+    std::vector<Vec2> pts;
+    for (const Vec3& p : contact_points) pts.emplace_back(p.x(), p.y());
+    const std::vector<Vec2> poly = sim::convex_hull_2d(pts, touch_tol);
+    return poly.size() >= 3 ? sim::polygon_margin(poly, g) : -INFINITY;
+  }
+
+  // The support the contacts call for (see the file comment), and the switch to it if it is new.
+  void choose_support(const sim::LineFit& fit, const Vec2& g, const Vec3& omega, const Vec3& com_velocity) {
+    sim::Support next;
+    int next_vertex = support_vertex;
+    auto point_at = [&](int k) {
+      next = {world_vertex(k), particle.hull.vertices[k], false, Vec3::UnitX()};
+      next_vertex = k;
+    };
+    auto line_at = [&](int k, const Vec3& axis) {
+      point_at(k);
+      next.line = true;
+      next.axis = axis.normalized();
+    };
+
+    if (smooth) {
+      // Always about the single lowest point: the most recent touch, else the current support.
+      int lowest = support_vertex;
+      for (int k : touching)
+        if (k != support_vertex && z[k] < z[lowest] + touch_tol) lowest = k;
+      point_at(lowest);
+    } else if (touching.size() <= 1) {
+      const int o = touching.empty() ? support_vertex : touching[0];
+      const bool keep_line = support.line && support_vertex == o && !contact_changed;
+      switch (type) {
+        // The best-fit line is refitted when the contact set changes, not as its points move along.
+        case ContactType::line:
+          if (keep_line) return remember_axis(omega);
+          line_at(o, fit.direction);
+          break;
+        case ContactType::surface: line_at(o, has_prev_axis ? prev_axis : fit.direction); break;
+        default: point_at(o); break;
+      }
+    } else {
+      // Several points on the wall: tip about the feature of their polygon nearest the centre of mass.
+      std::vector<Vec2> poly = touching_polygon();
+      const sim::ClosestFeature f = sim::closest_feature(poly, g);
+      const int a = nearest_touching(poly[f.i]);
+      if (f.j < 0 || poly.size() < 2) {
+        point_at(a);
+      } else {
+        const int b = nearest_touching(poly[f.j]);
+        line_at(a, world_vertex(b) - world_vertex(a));
+      }
+    }
+
+    const bool same = next_vertex == support_vertex && next.line == support.line &&
+                      (!next.line || std::abs(next.axis.dot(support.axis)) > 1 - 1e-14);
+    if (same) {
+      remember_axis(omega);
+      return;
+    }
+    // Keep a consistent axis sign across switches so momentum signs read naturally.
+    if (next.line && support.line && next.axis.dot(support.axis) < 0) next.axis = -next.axis;
+    const Vec3 momentum = sim::momentum_after_switch(body, q, com, omega, com_velocity, next);
+    // The new support touches within round-off (≤ 1e-12·L); put it exactly on the wall.
+    next.world.z() = 0;
+    support = next;
+    support_vertex = next_vertex;
+    reach_radius = hull_radius + support.body.norm();
+    com = sim::com_position(support, q);
+    heights(q, z);
+    rot.q = q;
+    rot.momentum = momentum;
+    rot.omega = sim::omega_from_momentum(body, support, q, momentum);
+    remember_axis(rot.omega);
+  }
+
+  void remember_axis(const Vec3& omega) {
+    if (support.line) {
+      prev_axis = support.axis;
+      has_prev_axis = true;
+    } else if (omega.norm() > 1e-12 * std::sqrt(params.gravity / length)) {
+      prev_axis = omega.normalized();
+      has_prev_axis = true;
+    }
+  }
+
+  int nearest_touching(const Vec2& p) const {
+    int best = touching[0];
+    double best_d = INFINITY;
+    for (int k : touching) {
+      const Vec3 w = world_vertex(k);
+      const double d = (Vec2(w.x(), w.y()) - p).norm();
+      if (d < best_d) {
+        best_d = d;
+        best = k;
+      }
+    }
+    return best;
+  }
+
+  // ---- rest ------------------------------------------------------------------------------------------------
+
+  // Finds the hull face under the centre of mass; if it is a statically stable face, sets it exactly flush on
+  // the wall and ends the run. Returns false (and changes nothing) otherwise.
+  bool come_to_rest() {
+    const Vec3 down(0, 0, -1);
+    int best = -1;
+    double best_down = -INFINITY;
+    for (std::size_t f = 0; f < particle.hull.faces.size(); ++f) {
+      const HullFace& face = particle.hull.faces[f];
+      const Vec3 n = q * face.normal;
+      if (n.z() >= 0 || -n.z() <= best_down) continue;
+      const Vec3 a = world_vertex(face.loop[0]);
+      for (std::size_t i = 1; i + 1 < face.loop.size(); ++i) {
+        if (sim::ray_hits_triangle(com, down, a, world_vertex(face.loop[i]), world_vertex(face.loop[i + 1]))) {
+          best = static_cast<int>(f);
+          best_down = -n.z();
+          break;
+        }
+      }
+    }
+    if (best < 0 || particle.face_stability_margin[best] <= 0) return false;
+
+    // Rotate the face flush about the support point, then lift or lower it onto the wall exactly.
+    const HullFace& face = particle.hull.faces[best];
+    const Quat align = Quat::FromTwoVectors(q * face.normal, down);
+    q = (align * q).normalized();
+    const Vec3 pivot = support.world;
+    com = pivot + align * (com - pivot);
+    support.world = com + q * support.body;
+    double lowest = INFINITY;
+    for (int k : face.loop) lowest = std::min(lowest, (com + q * particle.hull.vertices[k]).z());
+    com.z() -= lowest;
+    support.world.z() -= lowest;
+
+    rest_points.clear();
+    double deepest = 0;
+    for (const Vec3& v : particle.hull.vertices) deepest = std::min(deepest, (com + q * v).z());
+    max_penetration = std::max(max_penetration, -deepest);
+    for (int k : face.loop) rest_points.push_back(com + q * particle.hull.vertices[k]);
+    rest_face = best;
+    rest = smooth ? RestKind::smooth : (particle.face_is_flat[best] ? RestKind::surface : RestKind::points);
+    rot = {q, Vec3::Zero(), Vec3::Zero()};
+    status = Status::rest;
+    if (!phases.empty()) phases.back().t1 = t;
+    return true;
+  }
+
+  bool step() {
+    if (status != Status::running) return false;
+    if (t >= max_time) {
+      status = Status::max_time;
+    } else if (steps >= params.max_steps) {
+      status = Status::max_steps;
+    } else if (falling) {
+      fall_step();
+    } else {
+      rotate();
+    }
+    if (!phases.empty()) phases.back().t1 = t;
+    return status == Status::running;
+  }
+
+  Sample sample() const {
+    Sample s;
+    s.t = t;
+    s.orientation = q;
+    s.omega = (falling || status == Status::rest) ? Vec3::Zero() : rot.omega;
+    s.com = com;
+    s.contact = falling ? ContactType::free_fall : type;
+    s.contact_count = falling ? 0 : static_cast<int>(contact.size());
+    s.kinetic_energy = kinetic_energy();
+    s.potential_energy = potential_energy();
+    return s;
+  }
+
+  SettleResult result() const {
+    SettleResult r;
+    r.status = status;
+    r.time = t;
+    r.steps = steps;
+    r.max_penetration = max_penetration;
+    r.orientation = q;
+    r.com = com;
+    r.rest = rest;
+    r.rest_face = rest_face;
+    r.contact_points = rest_points;
+    r.down_normal_body = q.conjugate() * Vec3(0, 0, -1);
+    r.phases = phases;
+    r.energy_start = energy_start;
+    r.energy_end = kinetic_energy() + potential_energy();
+    r.smooth = smooth;
+    r.dt = dt;
+    r.unconverged_steps = unconverged;
+    return r;
+  }
+};
+
+Settler::Settler(const Particle& particle, const SettleParams& params, const Quat& orientation)
+    : impl_(std::make_unique<Impl>(particle, params, orientation)) {}
+Settler::~Settler() = default;
+Settler::Settler(Settler&&) noexcept = default;
+Settler& Settler::operator=(Settler&&) noexcept = default;
+
+bool Settler::step() { return impl_->step(); }
+Sample Settler::sample() const { return impl_->sample(); }
+Status Settler::status() const { return impl_->status; }
+SettleResult Settler::result() const { return impl_->result(); }
+
+SettleResult Settler::run(const std::function<void(const Sample&)>& observer) {
+  if (observer) observer(sample());
+  while (impl_->status == Status::running) {
+    const long steps_before = impl_->steps;
+    step();
+    if (observer && impl_->steps != steps_before) observer(sample());
+  }
+  return result();
+}
+
+SettleResult settle(const Particle& particle, const SettleParams& params, const Quat& orientation,
+                    const std::function<void(const Sample&)>& observer) {
+  Settler settler(particle, params, orientation);
+  return settler.run(observer);
+}
+
+}  // namespace repose
