@@ -1,0 +1,199 @@
+// Tests of compute_convex_hull.
+//
+// Tolerances: hull faces are built from input coordinates of size O(L) (L = 1 here), so plane offsets, areas
+// and centroids carry round-off of a few ulps of L: 1e-12·L (or 1e-12 relative) is far above that and far
+// below any real error (a missing vertex or a wrong face changes results by O(L)).
+#include "repose/geometry/hull.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "repose/error.hpp"
+#include "repose/geometry/mass.hpp"
+#include "repose/geometry/shapes.hpp"
+
+namespace repose {
+namespace {
+
+constexpr double kTol = 1e-12;
+
+double hull_volume_by_fans(const ConvexHull& hull) {
+  // Triangulate every face polygon as a fan and integrate exactly (independent of face centroids/offsets).
+  TriangleMesh mesh;
+  mesh.vertices = hull.vertices;
+  for (const HullFace& face : hull.faces) {
+    for (std::size_t k = 1; k + 1 < face.loop.size(); ++k) {
+      mesh.triangles.push_back({face.loop[0], face.loop[k], face.loop[k + 1]});
+    }
+  }
+  return compute_mass_properties(mesh, 1.0).volume;
+}
+
+// Properties every hull must have, whatever the input. `tol` is the absolute length tolerance (the particles
+// here have L ~ 1, so it also serves, times L², for volumes).
+void check_hull(const ConvexHull& hull, const std::vector<Vec3>& points, double tol = kTol) {
+  ASSERT_EQ(hull.vertices.size(), hull.source_index.size());
+  for (std::size_t i = 0; i < hull.vertices.size(); ++i) {
+    ASSERT_GE(hull.source_index[i], 0);
+    ASSERT_LT(static_cast<std::size_t>(hull.source_index[i]), points.size());
+    EXPECT_EQ(hull.vertices[i], points[static_cast<std::size_t>(hull.source_index[i])]);
+  }
+  double divergence_volume = 0;
+  for (const HullFace& face : hull.faces) {
+    ASSERT_GE(face.loop.size(), 3u);
+    EXPECT_NEAR(face.normal.norm(), 1.0, kTol);
+    EXPECT_GT(face.area, 0);
+    // Vertices on the face plane; loop counter-clockwise seen from outside (each corner turns left).
+    const std::size_t n = face.loop.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const Vec3& a = hull.vertices[static_cast<std::size_t>(face.loop[k])];
+      const Vec3& b = hull.vertices[static_cast<std::size_t>(face.loop[(k + 1) % n])];
+      const Vec3& c = hull.vertices[static_cast<std::size_t>(face.loop[(k + 2) % n])];
+      EXPECT_NEAR(face.normal.dot(a), face.offset, tol);
+      EXPECT_GT(face.normal.dot((b - a).cross(c - b)), 0) << "corner " << k << " of a face is not CCW";
+    }
+    EXPECT_NEAR(face.normal.dot(face.centroid), face.offset, tol);
+    // Every input point is on the inner side of every face.
+    for (const Vec3& p : points) EXPECT_LE(face.normal.dot(p), face.offset + tol);
+    divergence_volume += face.area * face.normal.dot(face.centroid) / 3.0;
+  }
+  EXPECT_NEAR(divergence_volume, hull_volume_by_fans(hull), tol);
+}
+
+TEST(ConvexHull, Cube) {
+  const TriangleMesh mesh = make_shape("box:x=2,y=2,z=2");
+  const ConvexHull hull = compute_convex_hull(mesh.vertices);
+  check_hull(hull, mesh.vertices);
+  EXPECT_EQ(hull.vertices.size(), 8u);
+  ASSERT_EQ(hull.faces.size(), 6u);
+  int axes_seen = 0;
+  for (const HullFace& face : hull.faces) {
+    EXPECT_EQ(face.loop.size(), 4u);
+    EXPECT_NEAR(face.area, 4.0, kTol);
+    EXPECT_NEAR(face.offset, 1.0, kTol);
+    EXPECT_NEAR(face.normal.cwiseAbs().maxCoeff(), 1.0, kTol);  // ±x, ±y or ±z
+    Eigen::Index axis = 0;
+    face.normal.cwiseAbs().maxCoeff(&axis);
+    axes_seen |= 1 << (2 * axis + (face.normal[axis] > 0 ? 1 : 0));
+    EXPECT_LT((face.centroid - face.normal).norm(), kTol);
+  }
+  EXPECT_EQ(axes_seen, 0b111111);
+  EXPECT_NEAR(hull_volume_by_fans(hull), 8.0, kTol);
+}
+
+TEST(ConvexHull, PrismCapsAreMergedIntoSingleFaces) {
+  const int n = 16;
+  const double r = 0.8, h = 1.1;
+  const TriangleMesh mesh = make_shape("cylinder:r=0.8,h=1.1,n=16");
+  const ConvexHull hull = compute_convex_hull(mesh.vertices);
+  check_hull(hull, mesh.vertices);
+  EXPECT_EQ(hull.vertices.size(), 32u);  // the cap centres are not hull vertices
+  ASSERT_EQ(hull.faces.size(), 18u);
+  const double cap_area = n / 2.0 * r * r * std::sin(2 * std::numbers::pi / n);
+  const double side_area = 2 * r * std::sin(std::numbers::pi / n) * h;
+  int caps = 0;
+  for (const HullFace& face : hull.faces) {
+    if (std::abs(face.normal.z()) > 0.5) {
+      ++caps;
+      EXPECT_EQ(face.loop.size(), 16u);
+      EXPECT_NEAR(face.area, cap_area, kTol);
+      EXPECT_NEAR(std::abs(face.normal.z()), 1.0, kTol);
+      EXPECT_NEAR(face.offset, h / 2, kTol);
+    } else {
+      EXPECT_EQ(face.loop.size(), 4u);
+      EXPECT_NEAR(face.area, side_area, kTol);
+    }
+  }
+  EXPECT_EQ(caps, 2);
+  EXPECT_NEAR(hull_volume_by_fans(hull), compute_mass_properties(mesh, 1.0).volume, kTol);
+}
+
+TEST(ConvexHull, Tetrahedron) {
+  const TriangleMesh mesh = make_shape("tetrahedron:edge=1");
+  const ConvexHull hull = compute_convex_hull(mesh.vertices);
+  check_hull(hull, mesh.vertices);
+  EXPECT_EQ(hull.vertices.size(), 4u);
+  EXPECT_EQ(hull.faces.size(), 4u);
+  for (const HullFace& face : hull.faces) EXPECT_NEAR(face.area, std::sqrt(3.0) / 4, kTol);
+  EXPECT_NEAR(hull_volume_by_fans(hull), 1 / (6 * std::sqrt(2.0)), kTol);
+}
+
+TEST(ConvexHull, EllipsoidKeepsEveryVertex) {
+  // All vertices of a strictly convex surface are extreme points.
+  const TriangleMesh mesh = make_shape("ellipsoid:a=1,b=0.6,c=0.3,n=10");
+  const ConvexHull hull = compute_convex_hull(mesh.vertices);
+  check_hull(hull, mesh.vertices);
+  EXPECT_EQ(hull.vertices.size(), mesh.vertices.size());
+  EXPECT_NEAR(hull_volume_by_fans(hull), compute_mass_properties(mesh, 1.0).volume, kTol);
+}
+
+TEST(ConvexHull, IrregularParticleFarFromOrigin) {
+  TriangleMesh mesh = make_shape("irregular:seed=5");
+  const ConvexHull near_hull = compute_convex_hull(mesh.vertices);
+  check_hull(near_hull, mesh.vertices);
+  EXPECT_LT(near_hull.vertices.size(), mesh.vertices.size());  // non-convex: some vertices are inside
+  for (Vec3& p : mesh.vertices) p += Vec3(3e3, -2e3, 1e3);
+  const ConvexHull far_hull = compute_convex_hull(mesh.vertices);
+  // Coordinates of ~3e3 carry absolute round-off ~5e-13, so the checks use 1e-9·L.
+  check_hull(far_hull, mesh.vertices, 1e-9);
+  EXPECT_EQ(far_hull.source_index, near_hull.source_index);
+}
+
+TEST(ConvexHull, SupportVertex) {
+  const TriangleMesh mesh = make_shape("irregular:seed=9");
+  const ConvexHull hull = compute_convex_hull(mesh.vertices);
+  const Mat3 rot = Eigen::AngleAxisd(1.1, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  for (int k = 0; k < 50; ++k) {
+    const Vec3 dir =
+        rot * Vec3(std::cos(0.37 * k), std::sin(0.37 * k) * std::cos(0.11 * k), std::sin(0.11 * k));
+    const int s = hull.support_vertex(dir);
+    ASSERT_GE(s, 0);
+    double best = -INFINITY;
+    for (const Vec3& p : mesh.vertices) best = std::max(best, dir.dot(p));
+    EXPECT_EQ(dir.dot(hull.vertices[static_cast<std::size_t>(s)]), best);
+  }
+  EXPECT_EQ(ConvexHull{}.support_vertex(Vec3::UnitZ()), -1);
+}
+
+TEST(ConvexHull, RejectsDegenerateInput) {
+  const auto expect_error = [](const std::vector<Vec3>& points, const std::string& what,
+                               const std::string& expected = "") {
+    try {
+      compute_convex_hull(points);
+      ADD_FAILURE() << "no error for " << what;
+    } catch (const Error& e) {
+      const std::string message = e.what();
+      EXPECT_EQ(message.rfind("convex hull: ", 0), 0u) << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+      EXPECT_NE(message.find(expected), std::string::npos) << message;
+    }
+  };
+  expect_error({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}, "three points", "at least 4 points");
+  expect_error({}, "no points");
+  std::vector<Vec3> planar;
+  for (int i = 0; i < 5; ++i) {
+    for (int j = 0; j < 5; ++j) planar.emplace_back(i, j, 0.5 * i - 0.25 * j);
+  }
+  expect_error(planar, "coplanar points", "degenerate");
+  expect_error({Vec3(0, 0, 0), Vec3(1, 1, 1), Vec3(2, 2, 2), Vec3(3, 3, 3), Vec3(4, 4, 4)},
+               "collinear points", "degenerate");
+  expect_error(std::vector<Vec3>(6, Vec3(1, 2, 3)), "identical points", "degenerate");
+  expect_error({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, NAN)}, "NaN");
+}
+
+TEST(ConvexHull, DuplicatePointsMapToOneSource) {
+  std::vector<Vec3> points = make_shape("box:x=1,y=1,z=1").vertices;
+  const std::vector<Vec3> copy = points;
+  points.insert(points.end(), copy.begin(), copy.end());
+  points.emplace_back(0, 0, 0);  // interior
+  const ConvexHull hull = compute_convex_hull(points);
+  check_hull(hull, points);
+  EXPECT_EQ(hull.vertices.size(), 8u);
+  EXPECT_EQ(hull.faces.size(), 6u);
+}
+
+}  // namespace
+}  // namespace repose
