@@ -15,11 +15,13 @@ void settle_shape(benchmark::State& state, const char* spec) {
     // A deterministic spread of tilted starts.
     const double angle = 0.3 + 0.1 * static_cast<double>(i % 11);
     const repose::Vec3 axis(std::cos(0.7 * i), std::sin(0.7 * i), 0.3);
-    const auto r = repose::settle(particle, params, repose::Quat(Eigen::AngleAxisd(angle, axis.normalized())));
+    const auto r =
+        repose::settle(particle, params, repose::Quat(Eigen::AngleAxisd(angle, axis.normalized())));
     benchmark::DoNotOptimize(r.com);
     ++i;
   }
-  state.counters["settles/s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["settles/s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
 }  // namespace
@@ -27,7 +29,8 @@ void settle_shape(benchmark::State& state, const char* spec) {
 BENCHMARK_CAPTURE(settle_shape, cube, "box:x=1,y=1,z=1")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(settle_shape, tetrahedron, "tetrahedron:edge=1")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(settle_shape, cylinder64, "cylinder:r=0.5,h=1,n=64")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(settle_shape, ellipsoid2000, "ellipsoid:a=0.625,b=0.5,c=0.285,n=10")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(settle_shape, ellipsoid2000, "ellipsoid:a=0.625,b=0.5,c=0.285,n=10")
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(settle_shape, irregular, "irregular:seed=1")->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

@@ -68,11 +68,13 @@ void print_info(const Particle& p, double density) {
 Command add_info_command(CLI::App& app) {
   auto opts = std::make_shared<InfoOptions>();
   CLI::App* sub = app.add_subcommand("info", "Mass properties, hull and validation report of a particle");
-  sub->add_option("particle", opts->source, "Mesh file (STL, OBJ, PLY, OFF) or shape spec, e.g. box:x=1,y=2,z=3")
+  sub->add_option("particle", opts->source,
+                  "Mesh file (STL, OBJ, PLY, OFF) or shape spec, e.g. box:x=1,y=2,z=3")
       ->required();
   sub->add_option("--density", opts->density, "Density, mass per unit volume (default 1)");
   sub->add_flag("--json", opts->json, "Print JSON instead of text");
-  sub->add_option("--write-stl", opts->write_stl, "Also write the validated surface as binary STL (input frame)");
+  sub->add_option("--write-stl", opts->write_stl,
+                  "Also write the validated surface as binary STL (input frame)");
   return {sub, [opts]() {
             check_positive("--density", opts->density);
             const Particle p = load_particle(opts->source, opts->density);

@@ -35,15 +35,17 @@ void print_summary(const Particle& particle, const SettleResult& r) {
               << r.contact_points.size() << " support points)\n"
               << "down normal     " << vec(r.down_normal_body) << " (body frame)\n";
   }
-  std::cout << "orientation     " << vec(Eigen::Vector4d(r.orientation.w(), r.orientation.x(), r.orientation.y(),
-                                                       r.orientation.z()))
+  std::cout << "orientation     "
+            << vec(Eigen::Vector4d(r.orientation.w(), r.orientation.x(), r.orientation.y(),
+                                   r.orientation.z()))
             << " (w, x, y, z)\n"
             << "centre of mass  " << vec(r.com) << "\n"
-            << "penetration     " << num(r.max_penetration) << " max (" << num(r.max_penetration / particle.length)
-            << " L)\n"
+            << "penetration     " << num(r.max_penetration) << " max ("
+            << num(r.max_penetration / particle.length) << " L)\n"
             << "energy          " << num(r.energy_start) << " -> " << num(r.energy_end) << "\n"
             << "phases         ";
-  for (const Phase& p : r.phases) std::cout << " " << to_string(p.contact) << " [" << num(p.t0) << ", " << num(p.t1) << "]";
+  for (const Phase& p : r.phases)
+    std::cout << " " << to_string(p.contact) << " [" << num(p.t0) << ", " << num(p.t1) << "]";
   std::cout << "\n";
 }
 
@@ -58,7 +60,8 @@ Command add_settle_command(CLI::App& app) {
   sub->add_option("--density", o->density, "Density (kg/m^3 in si, g/cm^3 in cgs; default 1)");
   sub->add_option("--units", o->units, "si (m, kg, s; g = 9.81) or cgs (cm, g, s; g = 981)")
       ->check(CLI::IsMember({"si", "cgs"}));
-  sub->add_option("--damping", o->params.damping, "Damping coefficient C of Eq 4 (mass*length^2/time; default 0)");
+  sub->add_option("--damping", o->params.damping,
+                  "Damping coefficient C of Eq 4 (mass*length^2/time; default 0)");
   sub->add_option("--dt", o->params.dt, "Time step (default 1e-3*sqrt(L/g))");
   sub->add_option("--contact-threshold", o->params.contact_threshold,
                   "Contact threshold as a fraction of L (default 0.05, as in the paper)");
@@ -76,8 +79,9 @@ Command add_settle_command(CLI::App& app) {
   return {sub, [o]() {
             check_positive("--density", o->density);
             o->params.gravity = standard_gravity(o->units == "cgs" ? UnitSystem::cgs : UnitSystem::si);
-            o->params.smooth = o->smooth == "on" ? SmoothMode::on : o->smooth == "off" ? SmoothMode::off
-                                                                                         : SmoothMode::automatic;
+            o->params.smooth = o->smooth == "on"    ? SmoothMode::on
+                               : o->smooth == "off" ? SmoothMode::off
+                                                    : SmoothMode::automatic;
             validate(o->params);
             const Quat q0 = parse_orientation(o->orientation);
             if (!o->out_dir.empty()) ensure_output_directory(o->out_dir);

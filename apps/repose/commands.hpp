@@ -8,8 +8,8 @@
 namespace repose::cli {
 
 struct Command {
-  CLI::App* app = nullptr;     ///< the subcommand, to ask whether it was given
-  std::function<int()> run;    ///< runs it after parsing; returns the exit code
+  CLI::App* app = nullptr;   ///< the subcommand, to ask whether it was given
+  std::function<int()> run;  ///< runs it after parsing; returns the exit code
 };
 
 Command add_info_command(CLI::App& app);

@@ -11,7 +11,8 @@ double standard_gravity(UnitSystem units) { return units == UnitSystem::si ? 9.8
 
 namespace {
 void require(bool ok, const char* name, double value, const char* what) {
-  if (!ok) throw Error(std::string("parameter ") + name + " must be " + what + ", got " + std::to_string(value));
+  if (!ok)
+    throw Error(std::string("parameter ") + name + " must be " + what + ", got " + std::to_string(value));
 }
 }  // namespace
 
@@ -25,7 +26,8 @@ void validate(const SettleParams& p) {
           "a finite positive fraction of L^2");
   require(std::isfinite(p.drop_height) && p.drop_height >= 0, "drop-height", p.drop_height,
           "a finite number >= 0");
-  require(std::isfinite(p.drop_speed) && p.drop_speed >= 0, "drop-speed", p.drop_speed, "a finite number >= 0");
+  require(std::isfinite(p.drop_speed) && p.drop_speed >= 0, "drop-speed", p.drop_speed,
+          "a finite number >= 0");
   require(std::isfinite(p.max_time) && p.max_time >= 0, "max-time", p.max_time,
           "a finite positive number (or 0 for automatic)");
   require(p.max_steps > 0, "max-steps", static_cast<double>(p.max_steps), "positive");

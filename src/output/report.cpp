@@ -39,7 +39,8 @@ std::string settle_summary_json(const Particle& particle, const SettleParams& pa
                {"down_normal_body", vec_json(r.down_normal_body)},
                {"face", r.rest_face}};
   nlohmann::json phases = nlohmann::json::array();
-  for (const Phase& p : r.phases) phases.push_back({{"contact", to_string(p.contact)}, {"t0", p.t0}, {"t1", p.t1}});
+  for (const Phase& p : r.phases)
+    phases.push_back({{"contact", to_string(p.contact)}, {"t0", p.t0}, {"t1", p.t1}});
   j["phases"] = phases;
   j["energy"] = {{"start", r.energy_start}, {"end", r.energy_end}};
   j["unconverged_steps"] = r.unconverged_steps;
@@ -53,10 +54,11 @@ std::string time_series_header() {
 
 std::string time_series_row(const Sample& s) {
   char buf[512];
-  std::snprintf(buf, sizeof buf, "%.9g,%.12g,%.12g,%.12g,%.12g,%.9g,%.9g,%.9g,%.12g,%.12g,%.12g,%s,%d,%.9g,%.12g\n",
-                s.t, s.orientation.w(), s.orientation.x(), s.orientation.y(), s.orientation.z(), s.omega.x(),
-                s.omega.y(), s.omega.z(), s.com.x(), s.com.y(), s.com.z(), to_string(s.contact), s.contact_count,
-                s.kinetic_energy, s.potential_energy);
+  std::snprintf(buf, sizeof buf,
+                "%.9g,%.12g,%.12g,%.12g,%.12g,%.9g,%.9g,%.9g,%.12g,%.12g,%.12g,%s,%d,%.9g,%.12g\n", s.t,
+                s.orientation.w(), s.orientation.x(), s.orientation.y(), s.orientation.z(), s.omega.x(),
+                s.omega.y(), s.omega.z(), s.com.x(), s.com.y(), s.com.z(), to_string(s.contact),
+                s.contact_count, s.kinetic_energy, s.potential_energy);
   return buf;
 }
 

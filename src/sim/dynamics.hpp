@@ -13,13 +13,13 @@ struct Body {
   double damping = 0;           ///< C of Eq 4
 };
 
-/// The fixed support of a rotation phase: a point of the particle that stays at `world` (on the wall), and for
-/// a line contact the world direction of the rotation axis through it.
+/// The fixed support of a rotation phase: a point of the particle that stays at `world` (on the wall), and
+/// for a line contact the world direction of the rotation axis through it.
 struct Support {
   Vec3 world = Vec3::Zero();
-  Vec3 body = Vec3::Zero();     ///< the same material point in body coordinates
+  Vec3 body = Vec3::Zero();  ///< the same material point in body coordinates
   bool line = false;
-  Vec3 axis = Vec3::UnitX();    ///< unit, world frame (line contacts only)
+  Vec3 axis = Vec3::UnitX();  ///< unit, world frame (line contacts only)
 };
 
 /// The rotational state: orientation, angular velocity and angular momentum about the support point

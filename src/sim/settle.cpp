@@ -8,46 +8,59 @@
 //     the wall, and no vertex may pass below it: every new touch is located inside the step by bisection.
 // When the paper's stability test fires, the run finishes the rotation on touching points alone until they
 // hold the centre of mass, then sets the supporting hull face exactly flush: the rest is a true equilibrium.
+#include "repose/sim/settle.hpp"
+
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <cstdio>
 #include <cstdlib>
+#include <numbers>
 
 #include "contact.hpp"
 #include "dynamics.hpp"
 #include "repose/error.hpp"
-#include "repose/sim/settle.hpp"
 #include "stability.hpp"
 
 namespace repose {
 
 const char* to_string(ContactType type) {
   switch (type) {
-    case ContactType::free_fall: return "free-fall";
-    case ContactType::point: return "point";
-    case ContactType::line: return "line";
-    case ContactType::surface: return "surface";
+    case ContactType::free_fall:
+      return "free-fall";
+    case ContactType::point:
+      return "point";
+    case ContactType::line:
+      return "line";
+    case ContactType::surface:
+      return "surface";
   }
   return "?";
 }
 
 const char* to_string(Status status) {
   switch (status) {
-    case Status::running: return "running";
-    case Status::rest: return "rest";
-    case Status::max_time: return "max-time";
-    case Status::max_steps: return "max-steps";
+    case Status::running:
+      return "running";
+    case Status::rest:
+      return "rest";
+    case Status::max_time:
+      return "max-time";
+    case Status::max_steps:
+      return "max-steps";
   }
   return "?";
 }
 
 const char* to_string(RestKind kind) {
   switch (kind) {
-    case RestKind::none: return "none";
-    case RestKind::surface: return "surface";
-    case RestKind::points: return "points";
-    case RestKind::smooth: return "smooth";
+    case RestKind::none:
+      return "none";
+    case RestKind::surface:
+      return "surface";
+    case RestKind::points:
+      return "points";
+    case RestKind::smooth:
+      return "smooth";
   }
   return "?";
 }
@@ -64,23 +77,23 @@ struct Settler::Impl {
   const Particle& particle;
   SettleParams params;
   sim::Body body;
-  double length = 0;          // L
-  double band = 0;            // ε (length)
-  double touch_tol = 0;       // a vertex this close to the wall is touching it
-  double event_tol = 0;       // a vertex this far below the wall triggers a touch event
-  double rss_threshold = 0;   // Algorithm 1 line/surface threshold (length²)
+  double length = 0;         // L
+  double band = 0;           // ε (length)
+  double touch_tol = 0;      // a vertex this close to the wall is touching it
+  double event_tol = 0;      // a vertex this far below the wall triggers a touch event
+  double rss_threshold = 0;  // Algorithm 1 line/surface threshold (length²)
   double dt = 0;
   double max_time = 0;
   bool smooth = false;
-  double hull_radius = 0;     // largest distance of a hull vertex from the centre of mass
-  double reach_radius = 0;    // largest distance of a hull vertex from the current support
+  double hull_radius = 0;   // largest distance of a hull vertex from the centre of mass
+  double reach_radius = 0;  // largest distance of a hull vertex from the current support
 
   // Per-run state.
   double t = 0;
   long steps = 0;
   Status status = Status::running;
   bool falling = false;
-  double fall_speed = 0;  // downward
+  double fall_speed = 0;          // downward
   double lowest_body_height = 0;  // min over hull vertices of (R p).z, constant while falling
   Quat q = Quat::Identity();
   Vec3 com = Vec3::Zero();
@@ -88,6 +101,8 @@ struct Settler::Impl {
   sim::Rotation rot;
   int support_vertex = -1;
   bool finishing = false;
+  bool trace = std::getenv("REPOSE_TRACE") != nullptr;  // debugging aid: one line per step on stderr
+  bool band_entered = true;  // a point entered the ε band in the last step (or contact just began)
   bool has_prev_axis = false;
   Vec3 prev_axis = Vec3::UnitX();
   ContactType type = ContactType::free_fall;
@@ -95,8 +110,7 @@ struct Settler::Impl {
   std::vector<int> contact;   // hull vertices within ε
   std::vector<int> touching;  // hull vertices on the wall
   std::vector<char> in_contact;
-  bool contact_changed = true;  // the contact set differs from the previous step's
-  double quiet_since = -1;      // smooth particles: since when the rest conditions have held (−1: not)
+  double quiet_since = -1;  // smooth particles: since when the rest conditions have held (−1: not)
   std::vector<Phase> phases;
   double max_penetration = 0;
   double energy_start = 0;
@@ -121,8 +135,8 @@ struct Settler::Impl {
         (std::sqrt(params.drop_speed * params.drop_speed + 2 * params.gravity * params.drop_height)) /
         params.gravity;
     max_time = params.max_time > 0 ? params.max_time : 2000 * time_scale + fall_time;
-    smooth = params.smooth == SmoothMode::on ||
-             (params.smooth == SmoothMode::automatic && is_smooth_surface(p));
+    smooth =
+        params.smooth == SmoothMode::on || (params.smooth == SmoothMode::automatic && is_smooth_surface(p));
 
     q = orientation.normalized();
     const std::size_t n = p.hull.vertices.size();
@@ -156,10 +170,12 @@ struct Settler::Impl {
   void heights(const Quat& qq, std::vector<double>& out) const {
     const Vec3 r3 = qq.toRotationMatrix().row(2).transpose();
     const auto& verts = particle.hull.vertices;
-    for (std::size_t k = 0; k < verts.size(); ++k) out[k] = support.world.z() + r3.dot(verts[k] - support.body);
+    for (std::size_t k = 0; k < verts.size(); ++k)
+      out[k] = support.world.z() + r3.dot(verts[k] - support.body);
   }
 
-  // ---- free fall -------------------------------------------------------------------------------------------
+  // ---- free fall
+  // -------------------------------------------------------------------------------------------
 
   void fall_step() {
     const double h = com.z() + lowest_body_height;  // height of the lowest point
@@ -184,7 +200,8 @@ struct Settler::Impl {
     falling = false;
     int lowest = 0;
     for (std::size_t k = 0; k < particle.hull.vertices.size(); ++k)
-      if ((q * particle.hull.vertices[k]).z() < (q * particle.hull.vertices[lowest]).z()) lowest = static_cast<int>(k);
+      if ((q * particle.hull.vertices[k]).z() < (q * particle.hull.vertices[lowest]).z())
+        lowest = static_cast<int>(k);
     const Vec3 p = particle.hull.vertices[lowest];
     support = {Vec3(com.x() + (q * p).x(), com.y() + (q * p).y(), 0.0), p, false, Vec3::UnitX()};
     support_vertex = lowest;
@@ -194,12 +211,15 @@ struct Settler::Impl {
     update_contacts(Vec3::Zero(), com_velocity);
   }
 
-  // ---- rotation --------------------------------------------------------------------------------------------
+  // ---- rotation
+  // --------------------------------------------------------------------------------------------
 
-  // Whether vertex k, now at height zk, has (since the start of the step) passed below the wall, or entered the
-  // ε band. Below-the-wall is measured from where the vertex started, so a vertex that already touches within
-  // round-off does not re-trigger at once.
-  bool pierces(std::size_t k, double zk) const { return zk < std::min(z[k], 0.0) - event_tol; }
+  // Whether vertex k, now at height zk, has (since the start of the step) passed below the wall, or entered
+  // the ε band. Below-the-wall is measured from where the vertex started, so a vertex that already touches
+  // within round-off does not re-trigger at once.
+  bool pierces(std::size_t k, double zk) const {
+    return zk < std::max(std::min(z[k], 0.0), -100 * event_tol) - event_tol;
+  }
   bool enters_band(std::size_t k, double zk) const {
     return !smooth && !finishing && !in_contact[k] && zk <= band;
   }
@@ -219,7 +239,8 @@ struct Settler::Impl {
 
   void rotate() {
     sim::Rotation next;
-    int iterations = sim::rotate_step(body, support, rot, dt, params.quaternion_tolerance, params.max_iterations, next);
+    int iterations =
+        sim::rotate_step(body, support, rot, dt, params.quaternion_tolerance, params.max_iterations, next);
     double taken = dt;
 
     // Eq 2's idea, the bounding test that gates the exact distance query: a vertex can only cause an event
@@ -235,6 +256,7 @@ struct Settler::Impl {
       event = event || pierces(k, zz[k]) || enters_band(k, zz[k]);
     }
 
+    band_entered = false;
     if (event) {
       // Bisect for the earliest instant at which an event holds (to 2^-48 of the step).
       double lo = 0, hi = dt;
@@ -245,7 +267,8 @@ struct Settler::Impl {
       for (int i = 0; i < kBisections; ++i) {
         const double mid = 0.5 * (lo + hi);
         sim::Rotation trial;
-        const int it = sim::rotate_step(body, support, rot, mid, params.quaternion_tolerance, params.max_iterations, trial);
+        const int it = sim::rotate_step(body, support, rot, mid, params.quaternion_tolerance,
+                                        params.max_iterations, trial);
         if (event_at(trial.q, candidates, pierced)) {
           hi = mid;
           hi_state = trial;
@@ -259,6 +282,7 @@ struct Settler::Impl {
       }
       // A vertex entering the band: take the instant just after (it is then inside). A vertex reaching the
       // wall: take the instant just before, so it touches from above (within event_tol) and never pierces.
+      band_entered = !hi_pierced;
       next = hi_pierced ? lo_state : hi_state;
       taken = hi_pierced ? lo : hi;
       if (hi_pierced) iterations = lo_iterations;
@@ -273,32 +297,36 @@ struct Settler::Impl {
     update_contacts(omega_before, omega_before.cross(com - support.world));
   }
 
-  // ---- contacts, stability and supports --------------------------------------------------------------------
+  // ---- contacts, stability and supports
+  // --------------------------------------------------------------------
 
   // Recomputes the contact and touching sets, checks for rest, and switches the support if the contacts call
   // for another one. `omega` and `com_velocity` are the motion just before (for the impact law).
   void update_contacts(const Vec3& omega, const Vec3& com_velocity) {
     heights(q, z);
-    const std::vector<int> previous_contact = contact;
     contact.clear();
     touching.clear();
     double lowest = INFINITY;
     for (std::size_t k = 0; k < z.size(); ++k) {
       lowest = std::min(lowest, z[k]);
-      // A little hysteresis keeps a point that sits on the band's edge (on a rotation axis) from flickering
-      // in and out of the contact set with round-off.
-      in_contact[k] = z[k] <= (in_contact[k] ? band + 1e-9 * length : band);
+      // A margin of 1e-9·L: points that reach the band together (mirror images) join together, and a point
+      // sitting on the band's edge (on a rotation axis) does not flicker in and out with round-off.
+      in_contact[k] = z[k] <= band + touch_tol;
       if (in_contact[k]) contact.push_back(static_cast<int>(k));
       if (z[k] <= touch_tol) touching.push_back(static_cast<int>(k));
     }
     max_penetration = std::max(max_penetration, -lowest);
-    contact_changed = contact != previous_contact;
 
+    // The regression of Algorithm 1 is done on the contact points' footprints on the wall, so the fitted
+    // contact line lies in the wall plane: a hinge tilted by the ε band would make the particle swing about
+    // an unphysical equilibrium above the wall.
     std::vector<Vec3> contact_points;
     for (int k : contact) contact_points.push_back(world_vertex(k));
+    std::vector<Vec3> footprints = contact_points;
+    for (Vec3& p : footprints) p.z() = 0;
     sim::LineFit fit;
     const ContactType new_type =
-        smooth ? ContactType::point : sim::classify_contact(contact_points, rss_threshold, &fit);
+        smooth ? ContactType::point : sim::classify_contact(footprints, rss_threshold, &fit);
     set_type(new_type);
 
     const Vec2 g(com.x(), com.y());
@@ -325,10 +353,13 @@ struct Settler::Impl {
       if (!finishing && paper_stability_test(contact_points, g)) finishing = true;
     }
     choose_support(fit, g, omega, com_velocity);
-    if (std::getenv("REPOSE_TRACE"))
-      std::fprintf(stderr, "t=%.9g type=%s contact=%zu touching=%zu finishing=%d support=%d line=%d axis=%g,%g,%g omega=%g,%g,%g\n", t,
-                   to_string(type), contact.size(), touching.size(), finishing, support_vertex, support.line,
-                   support.axis.x(), support.axis.y(), support.axis.z(), rot.omega.x(), rot.omega.y(), rot.omega.z());
+    if (trace)
+      std::fprintf(stderr,
+                   "t=%.9g type=%s contact=%zu touching=%zu finishing=%d support=%d line=%d axis=%g,%g,%g "
+                   "omega=%g,%g,%g\n",
+                   t, to_string(type), contact.size(), touching.size(), finishing, support_vertex,
+                   support.line, support.axis.x(), support.axis.y(), support.axis.z(), rot.omega.x(),
+                   rot.omega.y(), rot.omega.z());
   }
 
   double kinetic_energy_of(const Vec3& omega) const {
@@ -351,8 +382,8 @@ struct Settler::Impl {
     return sim::convex_hull_2d(pts, touch_tol);
   }
 
-  // Static equilibrium on the wall: the touching points surround the centre of mass's projection (or it lies on
-  // their segment, a balanced edge).
+  // Static equilibrium on the wall: the touching points surround the centre of mass's projection (or it lies
+  // on their segment, a balanced edge).
   bool touching_points_hold(const Vec2& g) const {
     if (touching.size() < 2) return false;
     const std::vector<Vec2> poly = touching_polygon();
@@ -406,28 +437,56 @@ struct Settler::Impl {
         if (k != support_vertex && z[k] < z[lowest] + touch_tol) lowest = k;
       point_at(lowest);
     } else if (touching.size() <= 1) {
+      // One point on the wall: the paper's kinematics from the contact set (Algorithm 1), a rotation about
+      // the best-fit line for a line contact, about the previous axis for a surface contact.
       const int o = touching.empty() ? support_vertex : touching[0];
-      const bool keep_line = support.line && support_vertex == o && !contact_changed;
-      switch (type) {
-        // The best-fit line is refitted when the contact set changes, not as its points move along.
-        case ContactType::line:
-          if (keep_line) return remember_axis(omega);
-          line_at(o, fit.direction);
-          break;
-        case ContactType::surface: line_at(o, has_prev_axis ? prev_axis : fit.direction); break;
-        default: point_at(o); break;
+      // The best-fit line is taken when the contact becomes a line and kept while the same point touches:
+      // refitting as hovering points enter and leave the band makes the axis flip back and forth between
+      // two lines, a cycle in which the particle never settles.
+      // A pivot chosen from the touching points is kept until a new point enters the band: switching straight
+      // back to the band's line would drive the point that just lifted into the wall again, a rocking cycle.
+      const bool keep_line = support.line && support_vertex == o;
+      const bool keep_point = !support.line && support_vertex == o && !band_entered;
+      Vec3 axis = fit.direction;
+      const bool line = type != ContactType::point && !keep_point;
+      if (keep_line)
+        axis = support.axis;
+      else if (type == ContactType::surface && has_prev_axis)
+        axis = prev_axis;
+      if (line && line_is_supported(o, axis)) {
+        line_at(o, axis);
+      } else {
+        point_at(o);
       }
     } else {
-      // Several points on the wall: tip about the feature of their polygon nearest the centre of mass.
-      std::vector<Vec2> poly = touching_polygon();
-      const sim::ClosestFeature f = sim::closest_feature(poly, g);
-      const int a = nearest_touching(poly[f.i]);
-      if (f.j < 0 || poly.size() < 2) {
-        point_at(a);
-      } else {
-        const int b = nearest_touching(poly[f.j]);
-        line_at(a, world_vertex(b) - world_vertex(a));
+      // Several points on the wall: tip about the feature of their polygon nearest the centre of mass, unless
+      // the motion just after the impact would drive another touching point into the wall; then the first
+      // feature (edges before corners) that lets every other touching point separate, or failing that the
+      // nearest edge, which keeps both its ends on the wall.
+      const std::vector<Vec2> poly = touching_polygon();
+      const sim::ClosestFeature nearest = sim::closest_feature(poly, g);
+      std::vector<sim::ClosestFeature> candidates = {nearest};
+      const int n = static_cast<int>(poly.size());
+      for (int i = 0; i < (n == 2 ? 1 : n); ++i) candidates.push_back({i, (i + 1) % n});
+      for (int i = 0; i < n; ++i) candidates.push_back({i, -1});
+      auto make = [&](const sim::ClosestFeature& f) {
+        const int a = nearest_touching(poly[f.i]);
+        if (f.j < 0) {
+          point_at(a);
+        } else {
+          line_at(a, world_vertex(nearest_touching(poly[f.j])) - world_vertex(a));
+        }
+      };
+      bool chosen = false;
+      for (const sim::ClosestFeature& f : candidates) {
+        make(f);
+        if (others_separate(next, sim::momentum_after_switch(body, q, com, omega, com_velocity, next))) {
+          chosen = true;
+          break;
+        }
       }
+      if (!chosen)
+        make(nearest.j >= 0 || n < 2 ? nearest : sim::ClosestFeature{nearest.i, (nearest.i + 1) % n});
     }
 
     const bool same = next_vertex == support_vertex && next.line == support.line &&
@@ -450,6 +509,54 @@ struct Settler::Impl {
     rot.momentum = momentum;
     rot.omega = sim::omega_from_momentum(body, support, q, momentum);
     remember_axis(rot.omega);
+  }
+
+  // The points of a contact line other than the touching point O hover up to ε above the wall; they can only
+  // push up. The line holds only if upward forces at them can take the part of the weight's moment about O
+  // that the line constraint removes (the component normal to the axis); otherwise the particle would tip
+  // about O away from them, and it rotates about the point instead. Without this, a line tilted by up to ε
+  // would act as a frictionless hinge on which the particle swings like a pendulum for ever.
+  bool line_is_supported(int o, const Vec3& axis) const {
+    const Vec3 origin = world_vertex(o);
+    const Vec3 e = axis.normalized();
+    const Vec3 moment = (com - origin).cross(Vec3(0, 0, -body.mass * params.gravity));
+    const Vec3 normal_part = moment - moment.dot(e) * e;
+    if (normal_part.norm() <= 1e-9 * moment.norm()) return true;
+    bool ahead = false, behind = false;
+    Vec3 lever = Vec3::Zero();
+    for (int k : contact) {
+      const Vec3 d = world_vertex(k) - origin;
+      if (k == o || d.norm() <= touch_tol) continue;
+      const double s = d.dot(e);
+      ahead = ahead || s > touch_tol;
+      behind = behind || s < -touch_tol;
+      lever += d;
+    }
+    if (ahead && behind) return true;  // hovering points on both sides of O: either sense can be held
+    const Vec3 arm = lever.cross(Vec3::UnitZ());
+    if (arm.squaredNorm() == 0) return false;
+    return -normal_part.dot(arm) >= 0;  // the force needed at the hovering points is upward
+  }
+
+  // Whether, rotating about `next` with angular momentum `momentum` right after an impact, every touching
+  // point off the support moves up (or, at rest, is accelerated up by gravity).
+  bool others_separate(const sim::Support& next, const Vec3& momentum) const {
+    const Vec3 w = sim::omega_from_momentum(body, next, q, momentum);
+    const Mat3 inertia = sim::inertia_about_support(body, next, q);
+    const Vec3 m = sim::moment(body, next, q, Vec3::Zero());
+    const Vec3 alpha = next.line ? Vec3(m.dot(next.axis) / next.axis.dot(inertia * next.axis) * next.axis)
+                                 : Vec3(inertia.ldlt().solve(m));
+    const double v_tol = 1e-9 * std::sqrt(params.gravity * length);
+    const double a_tol = 1e-9 * params.gravity;
+    for (int k : touching) {
+      Vec3 r = world_vertex(k) - next.world;
+      if (next.line) r -= r.dot(next.axis) * next.axis;
+      if (r.norm() <= touch_tol) continue;  // on the support
+      const double vz = w.cross(r).z();
+      const double az = (alpha.cross(r) + w.cross(w.cross(r))).z();
+      if (vz < -v_tol || (vz <= v_tol && az < -a_tol)) return false;
+    }
+    return true;
   }
 
   void remember_axis(const Vec3& omega) {
@@ -476,7 +583,8 @@ struct Settler::Impl {
     return best;
   }
 
-  // ---- rest ------------------------------------------------------------------------------------------------
+  // ---- rest
+  // ------------------------------------------------------------------------------------------------
 
   // Finds the hull face under the centre of mass; if it is a statically stable face, sets it exactly flush on
   // the wall and ends the run. Returns false (and changes nothing) otherwise.
@@ -490,7 +598,8 @@ struct Settler::Impl {
       if (n.z() >= 0 || -n.z() <= best_down) continue;
       const Vec3 a = world_vertex(face.loop[0]);
       for (std::size_t i = 1; i + 1 < face.loop.size(); ++i) {
-        if (sim::ray_hits_triangle(com, down, a, world_vertex(face.loop[i]), world_vertex(face.loop[i + 1]))) {
+        if (sim::ray_hits_triangle(com, down, a, world_vertex(face.loop[i]),
+                                   world_vertex(face.loop[i + 1]))) {
           best = static_cast<int>(f);
           best_down = -n.z();
           break;

@@ -29,9 +29,8 @@ double cross2(const Vec2& o, const Vec2& a, const Vec2& b) {
 }  // namespace
 
 std::vector<Vec2> convex_hull_2d(std::vector<Vec2> pts, double tol) {
-  std::sort(pts.begin(), pts.end(), [](const Vec2& a, const Vec2& b) {
-    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-  });
+  std::sort(pts.begin(), pts.end(),
+            [](const Vec2& a, const Vec2& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
   std::vector<Vec2> unique;
   for (const Vec2& p : pts)
     if (unique.empty() || (p - unique.back()).norm() > tol) unique.push_back(p);

@@ -15,12 +15,12 @@ bool ray_hits_triangle(const Vec3& origin, const Vec3& dir, const Vec3& a, const
 /// Points closer than `tol` are merged.
 std::vector<Vec2> convex_hull_2d(std::vector<Vec2> points, double tol);
 
-/// Signed distance from `p` to the boundary of the convex polygon `hull` (CCW): positive inside. For a hull of
-/// one or two points (a point or a segment) the result is minus the distance to it.
+/// Signed distance from `p` to the boundary of the convex polygon `hull` (CCW): positive inside. For a hull
+/// of one or two points (a point or a segment) the result is minus the distance to it.
 double polygon_margin(const std::vector<Vec2>& hull, const Vec2& p);
 
-/// The feature of a convex polygon (or segment, or point) closest to an outside point `p`: the edge (i, i+1) if
-/// p projects inside it, else vertex i (then j = −1).
+/// The feature of a convex polygon (or segment, or point) closest to an outside point `p`: the edge (i, i+1)
+/// if p projects inside it, else vertex i (then j = −1).
 struct ClosestFeature {
   int i = 0;
   int j = -1;

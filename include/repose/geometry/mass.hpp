@@ -9,11 +9,11 @@ namespace repose {
 /// mesh and density are in.
 struct MassProperties {
   double volume = 0;
-  double mass = 0;                              ///< density · volume
-  Vec3 center_of_mass = Vec3::Zero();           ///< in the mesh's frame
-  Mat3 inertia = Mat3::Zero();                  ///< inertia tensor about the centre of mass, mesh axes
-  Vec3 principal_moments = Vec3::Zero();        ///< eigenvalues of `inertia`, ascending
-  Mat3 principal_axes = Mat3::Identity();       ///< columns are the principal axes, a proper rotation
+  double mass = 0;                         ///< density · volume
+  Vec3 center_of_mass = Vec3::Zero();      ///< in the mesh's frame
+  Mat3 inertia = Mat3::Zero();             ///< inertia tensor about the centre of mass, mesh axes
+  Vec3 principal_moments = Vec3::Zero();   ///< eigenvalues of `inertia`, ascending
+  Mat3 principal_axes = Mat3::Identity();  ///< columns are the principal axes, a proper rotation
 };
 
 /// Exact mass properties of a closed, outward-oriented triangle mesh (Eberly's polyhedral mass properties,

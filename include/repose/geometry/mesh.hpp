@@ -14,12 +14,12 @@ namespace repose {
 
 /// What validate_mesh() found and repaired.
 struct MeshReport {
-  int input_vertices = 0;        ///< vertex records before welding
-  int input_triangles = 0;       ///< triangles before repair
-  int welded_vertices = 0;       ///< vertex records merged into an earlier coincident vertex
-  int degenerate_triangles = 0;  ///< zero-area triangles removed
-  int unused_vertices = 0;       ///< vertices referenced by no triangle, removed
-  bool flipped = false;          ///< the whole surface was inverted (negative volume) and was flipped
+  int input_vertices = 0;             ///< vertex records before welding
+  int input_triangles = 0;            ///< triangles before repair
+  int welded_vertices = 0;            ///< vertex records merged into an earlier coincident vertex
+  int degenerate_triangles = 0;       ///< zero-area triangles removed
+  int unused_vertices = 0;            ///< vertices referenced by no triangle, removed
+  bool flipped = false;               ///< the whole surface was inverted (negative volume) and was flipped
   std::vector<std::string> warnings;  ///< one human-readable line per repair
 };
 
@@ -27,9 +27,9 @@ struct MeshReport {
 ///
 /// `name` (usually the file name or shape spec) starts every error message. Throws repose::Error when the
 /// surface is empty, has a non-finite coordinate, an index out of range, is open (boundary edges) or
-/// non-manifold, has inconsistent winding between neighbours, or encloses zero volume. Tolerances are relative
-/// to the bounding-box diagonal D: vertices closer than 1e-10·D are welded, triangles with area below
-/// 1e-14·D² are degenerate, and |volume| below 1e-12·D³ is zero.
+/// non-manifold, has inconsistent winding between neighbours, or encloses zero volume. Tolerances are
+/// relative to the bounding-box diagonal D: vertices closer than 1e-10·D are welded, triangles with area
+/// below 1e-14·D² are degenerate, and |volume| below 1e-12·D³ is zero.
 MeshReport validate_mesh(TriangleMesh& mesh, const std::string& name);
 
 /// Signed volume enclosed by a closed surface (positive for outward-facing triangles).

@@ -22,18 +22,18 @@ enum class SmoothMode {
 };
 
 struct SettleParams {
-  double gravity = 9.81;           ///< magnitude of g, length/time², along −z
-  double damping = 0.0;            ///< C in Eq 4, torque per angular velocity (mass·length²/time)
-  double dt = 0.0;                 ///< time step (time); 0 = automatic: 1e-3·sqrt(L/g)
-  double contact_threshold = 0.05; ///< ε as a fraction of L: points within ε·L of the wall are contacts
-  /// Line vs surface (Algorithm 1): the contact set is a line when the residual sum of squares of its best-fit
-  /// line is below this fraction of L². The paper's 0.1 (cm², for a particle of L ≈ 1 cm) is 0.1·L².
+  double gravity = 9.81;            ///< magnitude of g, length/time², along −z
+  double damping = 0.0;             ///< C in Eq 4, torque per angular velocity (mass·length²/time)
+  double dt = 0.0;                  ///< time step (time); 0 = automatic: 1e-3·sqrt(L/g)
+  double contact_threshold = 0.05;  ///< ε as a fraction of L: points within ε·L of the wall are contacts
+  /// Line vs surface (Algorithm 1): the contact set is a line when the residual sum of squares of its
+  /// best-fit line is below this fraction of L². The paper's 0.1 (cm², for a particle of L ≈ 1 cm) is 0.1·L².
   double line_threshold = 0.1;
   SmoothMode smooth = SmoothMode::automatic;
-  double drop_height = 0.0;        ///< initial height of the lowest point above the wall (length)
-  double drop_speed = 0.0;         ///< initial downward speed (length/time), ≥ 0
-  double max_time = 0.0;           ///< simulated-time limit (time); 0 = automatic: 2000·sqrt(L/g) + fall time
-  long max_steps = 20'000'000;     ///< step limit
+  double drop_height = 0.0;     ///< initial height of the lowest point above the wall (length)
+  double drop_speed = 0.0;      ///< initial downward speed (length/time), ≥ 0
+  double max_time = 0.0;        ///< simulated-time limit (time); 0 = automatic: 2000·sqrt(L/g) + fall time
+  long max_steps = 20'000'000;  ///< step limit
   double quaternion_tolerance = 1e-8;  ///< convergence of the pseudo-time iteration (Eqs 12-16)
   int max_iterations = 100;            ///< bound on pseudo-time iterations per step
   /// A smooth particle rests once its kinetic energy stays below this fraction of m·g·L.

@@ -16,14 +16,14 @@
 namespace repose {
 
 struct Particle {
-  std::string name;         ///< file name or shape spec it was built from
-  TriangleMesh mesh;        ///< validated surface, body frame (centre of mass at the origin)
-  Vec3 input_offset;        ///< centre of mass in the input mesh's frame (body = input − input_offset)
-  MassProperties mass;      ///< about the centre of mass, body frame (center_of_mass is zero)
-  ConvexHull hull;          ///< convex hull of `mesh.vertices`, body frame
-  double length = 0;        ///< characteristic length L = volume-equivalent sphere diameter (6V/π)^(1/3)
-  Aabb bounds;              ///< body-frame bounding box
-  MeshReport report;        ///< what validation repaired
+  std::string name;     ///< file name or shape spec it was built from
+  TriangleMesh mesh;    ///< validated surface, body frame (centre of mass at the origin)
+  Vec3 input_offset;    ///< centre of mass in the input mesh's frame (body = input − input_offset)
+  MassProperties mass;  ///< about the centre of mass, body frame (center_of_mass is zero)
+  ConvexHull hull;      ///< convex hull of `mesh.vertices`, body frame
+  double length = 0;    ///< characteristic length L = volume-equivalent sphere diameter (6V/π)^(1/3)
+  Aabb bounds;          ///< body-frame bounding box
+  MeshReport report;    ///< what validation repaired
 
   // Derived facts the settling engine and the rest-pose statistics use (computed once here).
   double max_dihedral_angle = 0;  ///< largest angle between the normals of neighbouring triangles (rad)

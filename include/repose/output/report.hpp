@@ -12,7 +12,8 @@ namespace repose {
 
 /// The JSON summary of one run (field names are stable; see docs/settle.md):
 /// status, time_to_rest, steps, max_penetration, rest {orientation [w,x,y,z], com, contact, contact_points,
-/// down_normal_body, face}, phases [{contact, t0, t1}], energy {start, end}, plus the particle and parameters.
+/// down_normal_body, face}, phases [{contact, t0, t1}], energy {start, end}, plus the particle and
+/// parameters.
 std::string settle_summary_json(const Particle& particle, const SettleParams& params, const Quat& initial,
                                 const SettleResult& result);
 

@@ -25,8 +25,8 @@ enum class ContactType { free_fall, point, line, surface };
 enum class Status { running, rest, max_time, max_steps };
 
 /// What the particle rests on: a planar face of its convex hull ("surface", flush with the wall), a set of
-/// isolated support points forming a hull face ("points", e.g. a jagged particle on its tips), or the bottom of
-/// a smooth particle ("smooth").
+/// isolated support points forming a hull face ("points", e.g. a jagged particle on its tips), or the bottom
+/// of a smooth particle ("smooth").
 enum class RestKind { none, surface, points, smooth };
 
 const char* to_string(ContactType type);
@@ -35,14 +35,14 @@ const char* to_string(RestKind kind);
 
 /// One instant of a run, as reported to observers and written to the time-series CSV.
 struct Sample {
-  double t = 0;                   ///< time
-  Quat orientation;               ///< body → world rotation
-  Vec3 omega = Vec3::Zero();      ///< angular velocity, world frame (rad/time)
-  Vec3 com = Vec3::Zero();        ///< centre of mass, world frame
+  double t = 0;               ///< time
+  Quat orientation;           ///< body → world rotation
+  Vec3 omega = Vec3::Zero();  ///< angular velocity, world frame (rad/time)
+  Vec3 com = Vec3::Zero();    ///< centre of mass, world frame
   ContactType contact = ContactType::free_fall;
-  int contact_count = 0;          ///< hull vertices within ε of the wall
-  double kinetic_energy = 0;      ///< translational + rotational
-  double potential_energy = 0;    ///< m·g·z_com
+  int contact_count = 0;        ///< hull vertices within ε of the wall
+  double kinetic_energy = 0;    ///< translational + rotational
+  double potential_energy = 0;  ///< m·g·z_com
 };
 
 /// A phase of constant contact type, [t0, t1].
@@ -54,21 +54,21 @@ struct Phase {
 
 struct SettleResult {
   Status status = Status::running;
-  double time = 0;                   ///< time to rest (or when the run stopped)
+  double time = 0;  ///< time to rest (or when the run stopped)
   long steps = 0;
-  double max_penetration = 0;        ///< largest depth of any vertex below the wall over the run (length)
+  double max_penetration = 0;  ///< largest depth of any vertex below the wall over the run (length)
   Quat orientation = Quat::Identity();
   Vec3 com = Vec3::Zero();
   RestKind rest = RestKind::none;
-  int rest_face = -1;                ///< index of the hull face the particle rests on, −1 if none
-  std::vector<Vec3> contact_points;  ///< world coordinates of the supporting points at rest
+  int rest_face = -1;                    ///< index of the hull face the particle rests on, −1 if none
+  std::vector<Vec3> contact_points;      ///< world coordinates of the supporting points at rest
   Vec3 down_normal_body = Vec3::Zero();  ///< body-frame unit direction pointing at the wall at the end
   std::vector<Phase> phases;
-  double energy_start = 0;           ///< kinetic + potential at t = 0
+  double energy_start = 0;  ///< kinetic + potential at t = 0
   double energy_end = 0;
-  bool smooth = false;               ///< whether the particle was treated as smooth
-  double dt = 0;                     ///< the time step used
-  long unconverged_steps = 0;        ///< steps whose pseudo-time iteration hit max_iterations
+  bool smooth = false;         ///< whether the particle was treated as smooth
+  double dt = 0;               ///< the time step used
+  long unconverged_steps = 0;  ///< steps whose pseudo-time iteration hit max_iterations
 };
 
 /// Whether SmoothMode::automatic treats this particle as smooth: convex everywhere with every dihedral angle
@@ -90,9 +90,9 @@ class Settler {
   /// Runs to the end, calling `observer` (if any) after every step, including the initial state.
   SettleResult run(const std::function<void(const Sample&)>& observer = {});
 
-  Sample sample() const;           ///< the current instant
+  Sample sample() const;  ///< the current instant
   Status status() const;
-  SettleResult result() const;     ///< the summary so far (final once status() != running)
+  SettleResult result() const;  ///< the summary so far (final once status() != running)
 
  private:
   struct Impl;
