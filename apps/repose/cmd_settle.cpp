@@ -1,4 +1,5 @@
 // repose settle MESH|SHAPE --orientation SPEC ...: one settling run, the paper's method end to end.
+#include <cmath>
 #include <iostream>
 #include <string>
 
@@ -25,9 +26,18 @@ struct SettleOptions {
   bool json = false;
 };
 
-void print_summary(const Particle& particle, const SettleResult& r) {
-  std::cout << "particle        " << particle.name << " (L = " << num(particle.length) << ", "
-            << (r.smooth ? "smooth" : "non-smooth") << ")\n"
+// Why the particle was treated as smooth or not, for the user to check the automatic decision.
+std::string smooth_reason(const Particle& particle, SmoothMode mode, bool smooth) {
+  if (mode != SmoothMode::automatic) return std::string(smooth ? "smooth" : "non-smooth") + " (--smooth)";
+  const double degrees = particle.max_dihedral_angle * 180 / 3.141592653589793;
+  return std::string(smooth ? "smooth" : "non-smooth") + " (auto: " + (particle.convex_surface ? "convex" : "concave") +
+         ", largest angle between neighbouring faces " + num(std::round(degrees * 10) / 10) + " deg; smooth needs " +
+         "convex and < 30)";
+}
+
+void print_summary(const Particle& particle, const SettleParams& params, const SettleResult& r) {
+  std::cout << "particle        " << particle.name << " (L = " << num(particle.length) << ")\n"
+            << "surface         " << smooth_reason(particle, params.smooth, r.smooth) << "\n"
             << "status          " << to_string(r.status) << " after " << num(r.time) << " (" << r.steps
             << " steps of dt " << num(r.dt) << ")\n";
   if (r.status == Status::rest) {
@@ -100,7 +110,7 @@ Command add_settle_command(CLI::App& app) {
             if (o->json)
               std::cout << summary;
             else
-              print_summary(particle, r);
+              print_summary(particle, o->params, r);
             return r.status == Status::rest ? 0 : 3;
           }};
 }

@@ -629,6 +629,8 @@ struct Settler::Impl {
     rest = smooth ? RestKind::smooth : (particle.face_is_flat[best] ? RestKind::surface : RestKind::points);
     rot = {q, Vec3::Zero(), Vec3::Zero()};
     status = Status::rest;
+    // Whatever the band looked like on the way down, the particle now rests on a face: a surface contact.
+    if (!smooth) set_type(ContactType::surface);
     if (!phases.empty()) phases.back().t1 = t;
     return true;
   }
