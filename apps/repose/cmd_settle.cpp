@@ -7,6 +7,7 @@
 #include "format.hpp"
 #include "repose/model/orientation.hpp"
 #include "repose/model/particle.hpp"
+#include "repose/model/scenario.hpp"
 #include "repose/output/files.hpp"
 #include "repose/output/report.hpp"
 #include "repose/sim/settle.hpp"
@@ -22,6 +23,7 @@ struct SettleOptions {
   std::string units = "si";
   std::string smooth = "auto";
   SettleParams params;
+  std::string scenario;
   std::string out_dir;
   bool json = false;
 };
@@ -30,9 +32,10 @@ struct SettleOptions {
 std::string smooth_reason(const Particle& particle, SmoothMode mode, bool smooth) {
   if (mode != SmoothMode::automatic) return std::string(smooth ? "smooth" : "non-smooth") + " (--smooth)";
   const double degrees = particle.max_dihedral_angle * 180 / 3.141592653589793;
-  return std::string(smooth ? "smooth" : "non-smooth") + " (auto: " + (particle.convex_surface ? "convex" : "concave") +
-         ", largest angle between neighbouring faces " + num(std::round(degrees * 10) / 10) + " deg; smooth needs " +
-         "convex and < 30)";
+  return std::string(smooth ? "smooth" : "non-smooth") +
+         " (auto: " + (particle.convex_surface ? "convex" : "concave") +
+         ", largest angle between neighbouring faces " + num(std::round(degrees * 10) / 10) +
+         " deg; smooth needs " + "convex and < 30)";
 }
 
 void print_summary(const Particle& particle, const SettleParams& params, const SettleResult& r) {
@@ -59,12 +62,63 @@ void print_summary(const Particle& particle, const SettleParams& params, const S
   std::cout << "\n";
 }
 
+// What a run needs, from the scenario file (if any) with the options given on the command line on top.
+struct RunSetup {
+  std::string source;
+  double density = 1.0;
+  Quat orientation = Quat::Identity();
+  SettleParams params;
+};
+
+RunSetup resolve_setup(const SettleOptions& o, const CLI::App& sub) {
+  auto given = [&](const char* option) { return sub.count(option) > 0; };
+  RunSetup setup;
+  std::string units = "si";
+  if (!o.scenario.empty()) {
+    const Scenario s = load_scenario(o.scenario);
+    setup.source = s.particle;
+    setup.density = s.density;
+    setup.orientation = s.orientation;
+    setup.params = s.params;
+    units = s.units == UnitSystem::cgs ? "cgs" : "si";
+  }
+  if (!o.source.empty()) setup.source = o.source;
+  if (setup.source.empty())
+    throw Error("settle: give a particle (mesh file or shape spec) or --scenario FILE");
+  if (given("--density") || o.scenario.empty()) setup.density = o.density;
+  check_positive("--density", setup.density);
+  if (given("--orientation") || o.scenario.empty()) setup.orientation = parse_orientation(o.orientation);
+  if (given("--units") || o.scenario.empty()) units = o.units;
+  SettleParams& p = setup.params;
+  p.gravity = standard_gravity(units == "cgs" ? UnitSystem::cgs : UnitSystem::si);
+  const auto take = [&](const char* option, double& field, double value) {
+    if (given(option) || o.scenario.empty()) field = value;
+  };
+  take("--damping", p.damping, o.params.damping);
+  take("--dt", p.dt, o.params.dt);
+  take("--contact-threshold", p.contact_threshold, o.params.contact_threshold);
+  take("--line-threshold", p.line_threshold, o.params.line_threshold);
+  take("--drop-height", p.drop_height, o.params.drop_height);
+  take("--drop-speed", p.drop_speed, o.params.drop_speed);
+  take("--max-time", p.max_time, o.params.max_time);
+  if (given("--max-steps") || o.scenario.empty()) p.max_steps = o.params.max_steps;
+  if (given("--smooth") || o.scenario.empty())
+    p.smooth = o.smooth == "on"    ? SmoothMode::on
+               : o.smooth == "off" ? SmoothMode::off
+                                   : SmoothMode::automatic;
+  validate(p);
+  return setup;
+}
+
 }  // namespace
 
 Command add_settle_command(CLI::App& app) {
   auto o = std::make_shared<SettleOptions>();
   CLI::App* sub = app.add_subcommand("settle", "Settle one particle on the wall z = 0 (the paper's method)");
-  sub->add_option("particle", o->source, "Mesh file (STL, OBJ, PLY, OFF) or shape spec")->required();
+  sub->add_option("particle", o->source, "Mesh file (STL, OBJ, PLY, OFF) or shape spec");
+  sub->add_option(
+      "--scenario", o->scenario,
+      "Scenario file (JSON, e.g. scenarios/paper/cylinder-1106.json); options given here override it");
   sub->add_option("--orientation", o->orientation,
                   "Initial orientation, body to world: quat:w,x,y,z | axis-angle:x,y,z,radians | identity");
   sub->add_option("--density", o->density, "Density (kg/m^3 in si, g/cm^3 in cgs; default 1)");
@@ -86,23 +140,17 @@ Command add_settle_command(CLI::App& app) {
   sub->add_option("--max-steps", o->params.max_steps, "Step limit (default 2e7)");
   sub->add_option("--out", o->out_dir, "Write timeseries.csv and summary.json into this directory");
   sub->add_flag("--json", o->json, "Print the JSON summary instead of text");
-  return {sub, [o]() {
-            check_positive("--density", o->density);
-            o->params.gravity = standard_gravity(o->units == "cgs" ? UnitSystem::cgs : UnitSystem::si);
-            o->params.smooth = o->smooth == "on"    ? SmoothMode::on
-                               : o->smooth == "off" ? SmoothMode::off
-                                                    : SmoothMode::automatic;
-            validate(o->params);
-            const Quat q0 = parse_orientation(o->orientation);
+  return {sub, [o, sub]() {
+            const RunSetup setup = resolve_setup(*o, *sub);
             if (!o->out_dir.empty()) ensure_output_directory(o->out_dir);
-            const Particle particle = load_particle(o->source, o->density);
+            const Particle particle = load_particle(setup.source, setup.density);
 
             std::string csv;
             if (!o->out_dir.empty()) csv = time_series_header();
-            const SettleResult r = settle(particle, o->params, q0, [&](const Sample& s) {
+            const SettleResult r = settle(particle, setup.params, setup.orientation, [&](const Sample& s) {
               if (!o->out_dir.empty()) csv += time_series_row(s);
             });
-            const std::string summary = settle_summary_json(particle, o->params, q0, r);
+            const std::string summary = settle_summary_json(particle, setup.params, setup.orientation, r);
             if (!o->out_dir.empty()) {
               write_file_atomically(o->out_dir + "/timeseries.csv", csv);
               write_file_atomically(o->out_dir + "/summary.json", summary);
@@ -110,7 +158,7 @@ Command add_settle_command(CLI::App& app) {
             if (o->json)
               std::cout << summary;
             else
-              print_summary(particle, o->params, r);
+              print_summary(particle, setup.params, r);
             return r.status == Status::rest ? 0 : 3;
           }};
 }

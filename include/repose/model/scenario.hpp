@@ -1,0 +1,43 @@
+// Scenario files: a named, reproducible settling setup (particle, density, units, orientation, parameters),
+// in JSON. The paper's cases live in scenarios/paper/ and are shared by `repose settle --scenario`,
+// `repose paper`, the tests and the benchmarks, so each case has exactly one definition.
+//
+// Fields (only "particle" is required; unknown fields are an error, so a typo never goes unnoticed):
+//   name, description        strings
+//   particle                 mesh file (relative to the scenario file) or shape spec
+//   density                  mass / length³ (default 1)
+//   units                    "si" | "cgs" (default "si"): sets gravity 9.81 m/s² or 981 cm/s²
+//   orientation              orientation spec, e.g. "axis-angle:1,0,0,1.106" (default "identity")
+//   damping, dt, contact_threshold, line_threshold, drop_height, drop_speed, max_time   numbers, as
+//   SettleParams smooth                   "auto" | "on" | "off" note                     free text: why this
+//   input was chosen (shown in the reproduction report)
+#pragma once
+
+#include <string>
+
+#include "repose/geometry/types.hpp"
+#include "repose/model/params.hpp"
+
+namespace repose {
+
+struct Scenario {
+  std::string name;
+  std::string description;
+  std::string note;
+  std::string particle;  ///< shape spec, or mesh path resolved against the scenario's directory
+  double density = 1.0;
+  UnitSystem units = UnitSystem::si;
+  std::string orientation_spec = "identity";
+  Quat orientation = Quat::Identity();
+  SettleParams params;  ///< gravity set from `units`
+};
+
+/// Parses scenario JSON text; `origin` names it in errors and its directory resolves relative mesh paths.
+/// Throws repose::Error ("ORIGIN: problem") for malformed JSON, a missing or mistyped field, an unknown
+/// field, or an invalid value.
+Scenario parse_scenario(const std::string& json_text, const std::string& origin);
+
+/// Reads and parses a scenario file.
+Scenario load_scenario(const std::string& path);
+
+}  // namespace repose

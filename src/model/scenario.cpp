@@ -1,0 +1,102 @@
+#include "repose/model/scenario.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "repose/error.hpp"
+#include "repose/geometry/shapes.hpp"
+#include "repose/model/orientation.hpp"
+
+namespace repose {
+
+namespace {
+
+using nlohmann::json;
+
+double number(const json& j, const char* key, double fallback, const std::string& origin) {
+  if (!j.contains(key)) return fallback;
+  if (!j[key].is_number()) throw Error(origin + ": field '" + key + "' must be a number");
+  return j[key].get<double>();
+}
+
+std::string text(const json& j, const char* key, const std::string& fallback, const std::string& origin) {
+  if (!j.contains(key)) return fallback;
+  if (!j[key].is_string()) throw Error(origin + ": field '" + key + "' must be a string");
+  return j[key].get<std::string>();
+}
+
+}  // namespace
+
+Scenario parse_scenario(const std::string& json_text, const std::string& origin) {
+  json j;
+  try {
+    j = json::parse(json_text);
+  } catch (const json::parse_error& e) {
+    throw Error(origin + ": invalid JSON: " + e.what());
+  }
+  if (!j.is_object()) throw Error(origin + ": a scenario must be a JSON object");
+  static const std::set<std::string> known = {
+      "name",           "description", "note",       "particle", "density",
+      "units",          "orientation", "damping",    "dt",       "contact_threshold",
+      "line_threshold", "drop_height", "drop_speed", "max_time", "smooth"};
+  for (const auto& [key, value] : j.items())
+    if (!known.count(key)) throw Error(origin + ": unknown field '" + key + "'");
+  if (!j.contains("particle")) throw Error(origin + ": missing field 'particle'");
+
+  Scenario s;
+  s.name = text(j, "name", std::filesystem::path(origin).stem().string(), origin);
+  s.description = text(j, "description", "", origin);
+  s.note = text(j, "note", "", origin);
+  s.particle = text(j, "particle", "", origin);
+  if (!is_shape_spec(s.particle) && std::filesystem::path(s.particle).is_relative())
+    s.particle = (std::filesystem::path(origin).parent_path() / s.particle).string();
+  s.density = number(j, "density", 1.0, origin);
+  const std::string units = text(j, "units", "si", origin);
+  if (units != "si" && units != "cgs")
+    throw Error(origin + ": units must be \"si\" or \"cgs\", got \"" + units + "\"");
+  s.units = units == "cgs" ? UnitSystem::cgs : UnitSystem::si;
+  s.orientation_spec = text(j, "orientation", "identity", origin);
+  try {
+    s.orientation = parse_orientation(s.orientation_spec);
+  } catch (const Error& e) {
+    throw Error(origin + ": " + e.what());
+  }
+
+  SettleParams& p = s.params;
+  p.gravity = standard_gravity(s.units);
+  p.damping = number(j, "damping", p.damping, origin);
+  p.dt = number(j, "dt", p.dt, origin);
+  p.contact_threshold = number(j, "contact_threshold", p.contact_threshold, origin);
+  p.line_threshold = number(j, "line_threshold", p.line_threshold, origin);
+  p.drop_height = number(j, "drop_height", p.drop_height, origin);
+  p.drop_speed = number(j, "drop_speed", p.drop_speed, origin);
+  p.max_time = number(j, "max_time", p.max_time, origin);
+  const std::string smooth = text(j, "smooth", "auto", origin);
+  if (smooth != "auto" && smooth != "on" && smooth != "off")
+    throw Error(origin + ": smooth must be \"auto\", \"on\" or \"off\", got \"" + smooth + "\"");
+  p.smooth = smooth == "on" ? SmoothMode::on : smooth == "off" ? SmoothMode::off : SmoothMode::automatic;
+  if (!(s.density > 0) || !std::isfinite(s.density))
+    throw Error(origin + ": density must be a finite positive number");
+  try {
+    validate(p);
+  } catch (const Error& e) {
+    throw Error(origin + ": " + e.what());
+  }
+  return s;
+}
+
+Scenario load_scenario(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open scenario file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  // A scenario is a few hundred bytes; refuse anything absurd before parsing it.
+  if (ss.str().size() > (1u << 20)) throw Error(path + ": scenario file larger than 1 MiB");
+  return parse_scenario(ss.str(), path);
+}
+
+}  // namespace repose
