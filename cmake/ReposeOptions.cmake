@@ -7,6 +7,8 @@ target_compile_options(repose_options INTERFACE
   $<$<BOOL:${REPOSE_WARNINGS_AS_ERRORS}>:-Werror>)
 if(REPOSE_SANITIZE)
   target_compile_options(repose_options INTERFACE
-    -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
+    -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+    # -O1 keeps the sanitized suite (Eigen-heavy physics) fast enough for CI; asserts stay on (no NDEBUG).
+    -O1)
   target_link_options(repose_options INTERFACE -fsanitize=address,undefined -fno-sanitize-recover=all)
 endif()
