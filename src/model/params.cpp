@@ -1,6 +1,7 @@
 #include "repose/model/params.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "repose/error.hpp"
@@ -11,8 +12,10 @@ double standard_gravity(UnitSystem units) { return units == UnitSystem::si ? 9.8
 
 namespace {
 void require(bool ok, const char* name, double value, const char* what) {
-  if (!ok)
-    throw Error(std::string("parameter ") + name + " must be " + what + ", got " + std::to_string(value));
+  if (ok) return;
+  char shown[32];
+  std::snprintf(shown, sizeof shown, "%.10g", value);
+  throw Error(std::string("parameter ") + name + " must be " + what + ", got " + shown);
 }
 }  // namespace
 

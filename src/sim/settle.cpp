@@ -181,7 +181,7 @@ struct Settler::Impl {
     const double h = com.z() + lowest_body_height;  // height of the lowest point
     const double g = params.gravity;
     const double touch = (-fall_speed + std::sqrt(fall_speed * fall_speed + 2 * g * std::max(h, 0.0))) / g;
-    const double step = std::min(dt, touch);
+    const double step = std::min({dt, touch, max_time - t});
     t += step;
     ++steps;
     if (step == touch) {
@@ -239,9 +239,11 @@ struct Settler::Impl {
 
   void rotate() {
     sim::Rotation next;
+    // The last step is shortened so a run never passes its time limit.
+    const double h = std::min(dt, max_time - t);
     int iterations =
-        sim::rotate_step(body, support, rot, dt, params.quaternion_tolerance, params.max_iterations, next);
-    double taken = dt;
+        sim::rotate_step(body, support, rot, h, params.quaternion_tolerance, params.max_iterations, next);
+    double taken = h;
 
     // Eq 2's idea, the bounding test that gates the exact distance query: a vertex can only cause an event
     // inside this step if it ends it, or starts it, within the arc length the step can sweep of the levels.
@@ -259,7 +261,7 @@ struct Settler::Impl {
     band_entered = false;
     if (event) {
       // Bisect for the earliest instant at which an event holds (to 2^-48 of the step).
-      double lo = 0, hi = dt;
+      double lo = 0, hi = h;
       sim::Rotation lo_state = rot, hi_state = next;
       int lo_iterations = 0;
       bool hi_pierced = true, pierced = false;

@@ -27,7 +27,8 @@ CliResult run_cli(const std::string& args) {
   fs::create_directories(dir);
   const fs::path out = dir / ("out" + std::to_string(counter));
   const fs::path err = dir / ("err" + std::to_string(counter++));
-  const std::string cmd = std::string(REPOSE_CLI) + " " + args + " >" + out.string() + " 2>" + err.string();
+  const std::string cmd =
+      "'" + std::string(REPOSE_CLI) + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
   const int status = std::system(cmd.c_str());
   CliResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -35,6 +36,8 @@ CliResult run_cli(const std::string& args) {
   r.err = slurp(err);
   fs::remove(out);
   fs::remove(err);
+  std::error_code ec;
+  fs::remove(dir, ec);  // only succeeds once empty; concurrent calls in one process keep their own files
   return r;
 }
 
