@@ -14,5 +14,6 @@ struct Command {
 
 Command add_info_command(CLI::App& app);
 Command add_settle_command(CLI::App& app);
+Command add_paper_command(CLI::App& app);
 
 }  // namespace repose::cli

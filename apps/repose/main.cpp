@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   const std::vector<repose::cli::Command> commands = {
       repose::cli::add_info_command(app),
       repose::cli::add_settle_command(app),
+      repose::cli::add_paper_command(app),
   };
   try {
     app.parse(argc, argv);

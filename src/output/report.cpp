@@ -17,6 +17,9 @@ std::string settle_summary_json(const Particle& particle, const SettleParams& pa
                    {"mass", particle.mass.mass},
                    {"volume", particle.mass.volume},
                    {"characteristic_length", particle.length},
+                   {"inertia",
+                    {vec_json(particle.mass.inertia.row(0)), vec_json(particle.mass.inertia.row(1)),
+                     vec_json(particle.mass.inertia.row(2))}},
                    {"smooth", r.smooth}};
   j["parameters"] = {{"gravity", params.gravity},
                      {"damping", params.damping},
@@ -32,12 +35,16 @@ std::string settle_summary_json(const Particle& particle, const SettleParams& pa
   j["max_penetration"] = r.max_penetration;
   nlohmann::json points = nlohmann::json::array();
   for (const Vec3& p : r.contact_points) points.push_back(vec_json(p));
-  j["rest"] = {{"orientation", quat_json(r.orientation)},
-               {"com", vec_json(r.com)},
-               {"contact", r.rest == RestKind::none ? "none" : to_string(r.rest)},
-               {"contact_points", points},
-               {"down_normal_body", vec_json(r.down_normal_body)},
-               {"face", r.rest_face}};
+  j["rest"] = {
+      {"orientation", quat_json(r.orientation)},
+      {"com", vec_json(r.com)},
+      {"contact", r.rest == RestKind::none ? "none" : to_string(r.rest)},
+      {"contact_points", points},
+      {"down_normal_body", vec_json(r.down_normal_body)},
+      {"face", r.rest_face},
+      // Exact centre-of-mass height for this rest face: the face plane's distance from the centre of mass.
+      {"face_com_height",
+       r.rest_face >= 0 ? nlohmann::json(particle.hull.faces[r.rest_face].offset) : nlohmann::json(nullptr)}};
   nlohmann::json phases = nlohmann::json::array();
   for (const Phase& p : r.phases)
     phases.push_back({{"contact", to_string(p.contact)}, {"t0", p.t0}, {"t1", p.t1}});
