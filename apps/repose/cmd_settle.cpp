@@ -2,6 +2,7 @@
 #include <cmath>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "format.hpp"
@@ -10,6 +11,7 @@
 #include "repose/model/scenario.hpp"
 #include "repose/output/files.hpp"
 #include "repose/output/report.hpp"
+#include "repose/output/vtk.hpp"
 #include "repose/sim/settle.hpp"
 
 namespace repose::cli {
@@ -25,6 +27,9 @@ struct SettleOptions {
   SettleParams params;
   std::string scenario;
   std::string out_dir;
+  std::string vtk_dir;
+  double frame_dt = 0;
+  int frames = 0;
   bool json = false;
 };
 
@@ -139,17 +144,33 @@ Command add_settle_command(CLI::App& app) {
   sub->add_option("--max-time", o->params.max_time, "Simulated-time limit (default 2000*sqrt(L/g))");
   sub->add_option("--max-steps", o->params.max_steps, "Step limit (default 2e7)");
   sub->add_option("--out", o->out_dir, "Write timeseries.csv and summary.json into this directory");
+  sub->add_option("--vtk", o->vtk_dir, "Write ParaView frames (.vtp) and settling.pvd into this directory");
+  sub->add_option("--frame-dt", o->frame_dt, "Time between ParaView frames (default: every step)")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--frames", o->frames, "At most this many ParaView frames, evenly spread over the run")
+      ->check(CLI::Range(2, 10000000));
   sub->add_flag("--json", o->json, "Print the JSON summary instead of text");
   return {sub, [o, sub]() {
             const RunSetup setup = resolve_setup(*o, *sub);
             if (!o->out_dir.empty()) ensure_output_directory(o->out_dir);
+            if (!o->vtk_dir.empty()) ensure_output_directory(o->vtk_dir);
             const Particle particle = load_particle(setup.source, setup.density);
 
-            std::string csv;
-            if (!o->out_dir.empty()) csv = time_series_header();
+            // Samples are kept when frames must be spread over a run whose length is known only at its end.
+            const bool keep_samples = !o->out_dir.empty() || !o->vtk_dir.empty();
+            std::vector<Sample> samples;
             const SettleResult r = settle(particle, setup.params, setup.orientation, [&](const Sample& s) {
-              if (!o->out_dir.empty()) csv += time_series_row(s);
+              if (keep_samples) samples.push_back(s);
             });
+            std::string csv = time_series_header();
+            for (const Sample& s : samples) csv += time_series_row(s);
+            if (!o->vtk_dir.empty()) {
+              double frame_dt = o->frame_dt;
+              if (o->frames > 1 && frame_dt == 0) frame_dt = r.time / (o->frames - 1);
+              VtkRecorder vtk(particle, o->vtk_dir, frame_dt, o->frames, setup.params.contact_threshold);
+              for (const Sample& s : samples) vtk(s);
+              vtk.finish(r);
+            }
             const std::string summary = settle_summary_json(particle, setup.params, setup.orientation, r);
             if (!o->out_dir.empty()) {
               write_file_atomically(o->out_dir + "/timeseries.csv", csv);

@@ -1,0 +1,98 @@
+// The paper's scenario files (scenarios/paper/*.json) are the one definition of each case: these tests load
+// them and check the behaviour section 3 of the paper describes; `repose paper` runs the same files.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <repose/error.hpp>
+#include <repose/model/particle.hpp>
+#include <repose/model/scenario.hpp>
+#include <repose/sim/settle.hpp>
+#include <string>
+
+namespace repose {
+namespace {
+
+std::string paper(const std::string& name) {
+  return std::string(REPOSE_SOURCE_DIR) + "/scenarios/paper/" + name + ".json";
+}
+
+struct Outcome {
+  Particle particle;
+  SettleResult result;
+};
+
+Outcome run_scenario(const std::string& name) {
+  const Scenario s = load_scenario(paper(name));
+  Particle p = load_particle(s.particle, s.density);
+  SettleResult r = settle(p, s.params, s.orientation);
+  return {std::move(p), r};
+}
+
+TEST(PaperScenarios, CylindersGoOppositeWays) {
+  const Outcome base = run_scenario("cylinder-1106");
+  const Outcome side = run_scenario("cylinder-1108");
+  ASSERT_EQ(base.result.status, Status::rest);
+  ASSERT_EQ(side.result.status, Status::rest);
+  EXPECT_NEAR(base.result.com.z(), 0.335, 1e-9);                                   // on its base: h/2
+  EXPECT_NEAR(side.result.com.z(), 0.67 * std::cos(std::numbers::pi / 64), 1e-9);  // on a side face: apothem
+}
+
+TEST(PaperScenarios, TetrahedronGoesPointLineSurface) {
+  const Outcome t = run_scenario("tetrahedron");
+  ASSERT_EQ(t.result.status, Status::rest);
+  ASSERT_EQ(t.result.phases.size(), 3u);
+  EXPECT_EQ(t.result.phases[0].contact, ContactType::point);
+  EXPECT_EQ(t.result.phases[1].contact, ContactType::line);
+  EXPECT_EQ(t.result.phases[2].contact, ContactType::surface);
+  EXPECT_NEAR(t.result.com.z(), std::sqrt(2.0 / 3.0) / 4, 1e-9);
+}
+
+TEST(PaperScenarios, EllipsoidsRestAtTheMinimum) {
+  const Outcome low = run_scenario("ellipsoid-c075");
+  const Outcome high = run_scenario("ellipsoid-c150");
+  for (const Outcome* o : {&low, &high}) {
+    ASSERT_EQ(o->result.status, Status::rest);
+    EXPECT_TRUE(o->result.smooth);
+    EXPECT_NEAR(o->result.com.z(), 0.285, 0.005 * 0.285);
+  }
+  EXPECT_LE(high.result.time, low.result.time);  // more damping settles sooner
+}
+
+TEST(PaperScenarios, IrregularParticleRestsOnIsolatedTips) {
+  const Outcome g = run_scenario("irregular");
+  ASSERT_EQ(g.result.status, Status::rest);
+  EXPECT_EQ(g.result.rest, RestKind::points);
+  EXPECT_GE(g.result.contact_points.size(), 3u);
+  EXPECT_GT(g.particle.face_stability_margin[g.result.rest_face], 0);
+  // The axis changes on the way: more than one line phase.
+  int lines = 0;
+  for (const Phase& ph : g.result.phases) lines += ph.contact == ContactType::line;
+  EXPECT_GE(lines, 2);
+}
+
+TEST(ScenarioFile, RejectsTyposAndBadValues) {
+  const auto message = [](const std::string& json) {
+    try {
+      parse_scenario(json, "case.json");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message(R"({"particle": "box:x=1,y=1,z=1", "dampnig": 1})").find("unknown field 'dampnig'"),
+            std::string::npos);
+  EXPECT_NE(message(R"({"density": 1})").find("missing field 'particle'"), std::string::npos);
+  EXPECT_NE(message(R"({"particle": 3})").find("'particle' must be a string"), std::string::npos);
+  EXPECT_NE(message(R"({"particle": "box:x=1,y=1,z=1", "units": "imperial"})").find("units"),
+            std::string::npos);
+  EXPECT_NE(
+      message(R"({"particle": "box:x=1,y=1,z=1", "orientation": "quat:0,0,0,0"})").find("zero quaternion"),
+      std::string::npos);
+  EXPECT_NE(message(R"({"particle": "box:x=1,y=1,z=1", "dt": -1})").find("dt"), std::string::npos);
+  EXPECT_NE(message("{not json").find("case.json: invalid JSON"), std::string::npos);
+  EXPECT_EQ(message(R"({"particle": "box:x=1,y=1,z=1", "units": "cgs", "damping": 0.5})"), "accepted");
+}
+
+}  // namespace
+}  // namespace repose
