@@ -1,12 +1,11 @@
 #!/usr/bin/env bash
-# Quick start: install the dependencies, build repose (release) and run the main job: the paper's regular
-# tetrahedron (edge 1 cm, 1.2 g/cm^3) settling from a vertex, results in results/tetrahedron/.
+# Quick start: install the dependencies, build repose (release) and run the main job: `repose paper`, the
+# paper's four cases (six runs) with figures, ParaView series and a comparison table, in results/paper/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 cmake --preset release >/dev/null
 cmake --build --preset release -j"$(nproc)"
-mkdir -p results
-build/release/apps/repose/repose settle "tetrahedron:edge=1" --density 1.2 --units cgs \
-  --orientation "axis-angle:1,0.3,0,2.5" --out results/tetrahedron
-echo "Time series and summary: results/tetrahedron/timeseries.csv, results/tetrahedron/summary.json"
+build/release/apps/repose/repose paper --out results/paper
+echo "Look at: results/paper/report.md (comparison with the paper), results/paper/<case>/*.png (figures),"
+echo "         results/paper/<case>/vtk/settling.pvd (open in ParaView), results/paper/<case>/timeseries.csv"
