@@ -23,7 +23,7 @@ int main() {
   std::printf("%s after %.6f s, COM height %.7f cm (%ld steps)\n", repose::to_string(once.status), once.time,
               once.com.z(), steps);
   // Resting flush on a face, the COM is at a quarter of the height sqrt(2/3).
-  const bool ok = once.status == repose::Status::rest && std::abs(once.com.z() - std::sqrt(2.0 / 3.0) / 4) < 1e-6 &&
-                  stepped.com == once.com;
+  const bool ok = once.status == repose::Status::rest &&
+                  std::abs(once.com.z() - std::sqrt(2.0 / 3.0) / 4) < 1e-6 && stepped.com == once.com;
   return ok ? 0 : 1;
 }
