@@ -406,7 +406,7 @@ TriangleMesh make_shape(const std::string& spec) {
     params.allow({"r", "h", "n"});
     const double r = params.positive("r");
     const double h = params.positive("h");
-    const auto n = static_cast<int>(params.integer("n", 3, 100000, 64));
+    const auto n = static_cast<int>(params.integer("n", 3, 4096, 64));
     return make_cylinder(r, h, n);
   }
   if (name == "ellipsoid") {

@@ -2,7 +2,8 @@
 //
 // Body frames (the frame of the returned mesh; all shapes are centred on their centre of mass):
 // - box:x=X,y=Y,z=Z          edges X, Y, Z along body x, y, z.
-// - cylinder:r=R,h=H[,n=N]   regular N-gon prism (default N = 64) inscribed in the circle of radius R, axis
+// - cylinder:r=R,h=H[,n=N]   regular N-gon prism (3 ≤ N ≤ 4096, default 64; qhull merging the caps grows
+//                            steeply with N) inscribed in the circle of radius R, axis
 //                            along body z, one rim vertex on +x.
 // - ellipsoid:a=A,b=B,c=C[,n=F]   semi-axes A, B, C along body x, y, z; a geodesic icosphere of frequency F
 //                            (20·F² triangles, default F = 10 → 2000) with its vertices on the ellipsoid.
