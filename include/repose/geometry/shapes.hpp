@@ -7,10 +7,9 @@
 //                            along body z, one rim vertex on +x.
 // - ellipsoid:a=A,b=B,c=C[,n=F]   semi-axes A, B, C along body x, y, z; a geodesic icosphere of frequency F
 //                            (20·F² triangles, default F = 10 → 2000) with its vertices on the ellipsoid.
-// - tetrahedron:edge=A       regular tetrahedron; one face parallel to the body xy plane at z =
-// −A·sqrt(2/3)/4,
-//                            the opposite vertex on +z, bottom vertices at azimuths 90°, 210°, 330° (one on
-//                            +y).
+// - tetrahedron:edge=A       regular tetrahedron; one face parallel to the body xy plane at
+//                            z = −A·sqrt(2/3)/4, the opposite vertex on +z, bottom vertices at azimuths 90°,
+//                            210°, 330° (one on +y).
 // - irregular:seed=S[,size=D][,n=F]   a jagged, non-convex random particle (like Fig 9 of the paper): a
 //                            star-shaped surface with random radii on an icosphere of frequency F (default
 //                            4), stretched along random axes; D (default 1) is its largest extent. Same seed
