@@ -71,6 +71,7 @@ bool is_smooth_surface(const Particle& particle) {
 
 namespace {
 constexpr int kBisections = 48;  // locates an event to 2^-48 of a step: far below 1e-9·L of motion
+constexpr int kStallLimit = 20;  // after this many near-empty steps, contact choices stop second-guessing
 }  // namespace
 
 struct Settler::Impl {
@@ -103,6 +104,7 @@ struct Settler::Impl {
   bool finishing = false;
   bool trace = std::getenv("REPOSE_TRACE") != nullptr;  // debugging aid: one line per step on stderr
   bool band_entered = true;  // a point entered the ε band in the last step (or contact just began)
+  int stalled_steps = 0;     // consecutive steps an event cut to (almost) nothing
   bool has_prev_axis = false;
   Vec3 prev_axis = Vec3::UnitX();
   ContactType type = ContactType::free_fall;
@@ -290,6 +292,7 @@ struct Settler::Impl {
       if (hi_pierced) iterations = lo_iterations;
     }
     if (iterations >= params.max_iterations) ++unconverged;
+    stalled_steps = taken < 1e-9 * dt ? stalled_steps + 1 : 0;
     const Vec3 omega_before = next.omega;
     rot = next;
     q = rot.q;
@@ -432,12 +435,49 @@ struct Settler::Impl {
       next.axis = axis.normalized();
     };
 
+    // Several points on the wall: tip about the feature of their polygon nearest the centre of mass, unless
+    // the motion just after the impact would drive another touching point into the wall; then the first
+    // feature (edges before corners) that lets every other touching point separate, or failing that (or when
+    // the run has stalled on ever-shorter steps) the nearest edge, which keeps both its ends on the wall.
+    auto choose_from_touching = [&] {
+      const std::vector<Vec2> poly = touching_polygon();
+      const sim::ClosestFeature nearest = sim::closest_feature(poly, g);
+      std::vector<sim::ClosestFeature> candidates = {nearest};
+      const int n = static_cast<int>(poly.size());
+      for (int i = 0; i < (n == 2 ? 1 : n); ++i) candidates.push_back({i, (i + 1) % n});
+      for (int i = 0; i < n; ++i) candidates.push_back({i, -1});
+      auto make = [&](const sim::ClosestFeature& f) {
+        const int a = nearest_touching(poly[f.i]);
+        if (f.j < 0) {
+          point_at(a);
+        } else {
+          // The edge joins two points on the wall: a horizontal hinge, whatever round-off says.
+          Vec3 edge = world_vertex(nearest_touching(poly[f.j])) - world_vertex(a);
+          edge.z() = 0;
+          line_at(a, edge);
+        }
+      };
+      if (stalled_steps < kStallLimit) {
+        for (const sim::ClosestFeature& f : candidates) {
+          make(f);
+          if (others_separate(next, sim::momentum_after_switch(body, q, com, omega, com_velocity, next)))
+            return;
+        }
+      }
+      make(nearest.j >= 0 || n < 2 ? nearest : sim::ClosestFeature{nearest.i, (nearest.i + 1) % n});
+    };
+
     if (smooth) {
-      // Always about the single lowest point: the most recent touch, else the current support.
+      // Always about the single lowest point: the most recent touch, else the current support; but if that
+      // would drive the other touching point into the wall (rocking on an edge of the discretised surface),
+      // about the touching points together.
       int lowest = support_vertex;
       for (int k : touching)
         if (k != support_vertex && z[k] < z[lowest] + touch_tol) lowest = k;
       point_at(lowest);
+      if (touching.size() >= 2 &&
+          !others_separate(next, sim::momentum_after_switch(body, q, com, omega, com_velocity, next)))
+        choose_from_touching();
     } else if (touching.size() <= 1) {
       // One point on the wall: the paper's kinematics from the contact set (Algorithm 1), a rotation about
       // the best-fit line for a line contact, about the previous axis for a surface contact.
@@ -461,34 +501,7 @@ struct Settler::Impl {
         point_at(o);
       }
     } else {
-      // Several points on the wall: tip about the feature of their polygon nearest the centre of mass, unless
-      // the motion just after the impact would drive another touching point into the wall; then the first
-      // feature (edges before corners) that lets every other touching point separate, or failing that the
-      // nearest edge, which keeps both its ends on the wall.
-      const std::vector<Vec2> poly = touching_polygon();
-      const sim::ClosestFeature nearest = sim::closest_feature(poly, g);
-      std::vector<sim::ClosestFeature> candidates = {nearest};
-      const int n = static_cast<int>(poly.size());
-      for (int i = 0; i < (n == 2 ? 1 : n); ++i) candidates.push_back({i, (i + 1) % n});
-      for (int i = 0; i < n; ++i) candidates.push_back({i, -1});
-      auto make = [&](const sim::ClosestFeature& f) {
-        const int a = nearest_touching(poly[f.i]);
-        if (f.j < 0) {
-          point_at(a);
-        } else {
-          line_at(a, world_vertex(nearest_touching(poly[f.j])) - world_vertex(a));
-        }
-      };
-      bool chosen = false;
-      for (const sim::ClosestFeature& f : candidates) {
-        make(f);
-        if (others_separate(next, sim::momentum_after_switch(body, q, com, omega, com_velocity, next))) {
-          chosen = true;
-          break;
-        }
-      }
-      if (!chosen)
-        make(nearest.j >= 0 || n < 2 ? nearest : sim::ClosestFeature{nearest.i, (nearest.i + 1) % n});
+      choose_from_touching();
     }
 
     const bool same = next_vertex == support_vertex && next.line == support.line &&
@@ -500,13 +513,15 @@ struct Settler::Impl {
     // Keep a consistent axis sign across switches so momentum signs read naturally.
     if (next.line && support.line && next.axis.dot(support.axis) < 0) next.axis = -next.axis;
     const Vec3 momentum = sim::momentum_after_switch(body, q, com, omega, com_velocity, next);
-    // The new support touches within round-off (≤ 1e-12·L); put it exactly on the wall.
-    next.world.z() = 0;
+    // A new support that has sunk by round-off (≤ 1e-12·L) is lifted exactly onto the wall; one that touches
+    // from above (within 1e-9·L) stays where it is, so the switch never lowers the particle.
+    next.world.z() = std::max(next.world.z(), 0.0);
     support = next;
     support_vertex = next_vertex;
     reach_radius = hull_radius + support.body.norm();
     com = sim::com_position(support, q);
     heights(q, z);
+    max_penetration = std::max(max_penetration, -*std::min_element(z.begin(), z.end()));
     rot.q = q;
     rot.momentum = momentum;
     rot.omega = sim::omega_from_momentum(body, support, q, momentum);
@@ -545,9 +560,11 @@ struct Settler::Impl {
   bool others_separate(const sim::Support& next, const Vec3& momentum) const {
     const Vec3 w = sim::omega_from_momentum(body, next, q, momentum);
     const Mat3 inertia = sim::inertia_about_support(body, next, q);
-    const Vec3 m = sim::moment(body, next, q, Vec3::Zero());
+    const Vec3 m = sim::moment(body, next, q, w);  // weight and damping
+    // Euler's equation about a fixed point, d(I_O ω)/dt = M, with its gyroscopic term ω × I_O ω (which
+    // vanishes for a rotation about a fixed axis).
     const Vec3 alpha = next.line ? Vec3(m.dot(next.axis) / next.axis.dot(inertia * next.axis) * next.axis)
-                                 : Vec3(inertia.ldlt().solve(m));
+                                 : Vec3(inertia.ldlt().solve(m - w.cross(inertia * w)));
     const double v_tol = 1e-9 * std::sqrt(params.gravity * length);
     const double a_tol = 1e-9 * params.gravity;
     for (int k : touching) {
