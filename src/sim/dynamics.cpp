@@ -50,7 +50,9 @@ int rotate_step(const Body& body, const Support& s, const Rotation& now, double 
     next.q.coeffs() = coeffs;
     next.momentum = momentum;
     next.omega = omega_from_momentum(body, s, next.q, momentum);
-    if (change < tolerance) return it;
+    // Not before the second pass: the first one advances q with the previous step's ω, so from rest (ω = 0)
+    // it would "converge" with q unchanged and the new ω discarded from the orientation update.
+    if (it > 1 && change < tolerance) return it;
   }
   return max_iterations;
 }

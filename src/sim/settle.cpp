@@ -72,6 +72,9 @@ bool is_smooth_surface(const Particle& particle) {
 namespace {
 constexpr int kBisections = 48;  // locates an event to 2^-48 of a step: far below 1e-9·L of motion
 constexpr int kStallLimit = 20;  // after this many near-empty steps, contact choices stop second-guessing
+// A slow smooth particle (heavy damping creeps) rests by its energy only once its bottom facet is this close
+// to flush (rad), so the rest pose is where the motion was going, not a jump to it.
+constexpr double kSmoothRestTilt = 0.01;
 }  // namespace
 
 struct Settler::Impl {
@@ -350,7 +353,7 @@ struct Settler::Impl {
         quiet_since = -1;
       } else if (quiet_since < 0) {
         quiet_since = t;
-      } else if (t - quiet_since >= 10 * dt && come_to_rest()) {
+      } else if (t - quiet_since >= 10 * dt && come_to_rest(kSmoothRestTilt)) {
         return;
       }
     } else {
@@ -472,8 +475,12 @@ struct Settler::Impl {
       // would drive the other touching point into the wall (rocking on an edge of the discretised surface),
       // about the touching points together.
       int lowest = support_vertex;
+      double deepest = INFINITY;
       for (int k : touching)
-        if (k != support_vertex && z[k] < z[lowest] + touch_tol) lowest = k;
+        if (k != support_vertex && z[k] < deepest) {
+          deepest = z[k];
+          lowest = k;
+        }
       point_at(lowest);
       if (touching.size() >= 2 &&
           !others_separate(next, sim::momentum_after_switch(body, q, com, omega, com_velocity, next)))
@@ -607,7 +614,7 @@ struct Settler::Impl {
 
   // Finds the hull face under the centre of mass; if it is a statically stable face, sets it exactly flush on
   // the wall and ends the run. Returns false (and changes nothing) otherwise.
-  bool come_to_rest() {
+  bool come_to_rest(double max_tilt = INFINITY) {
     const Vec3 down(0, 0, -1);
     int best = -1;
     double best_down = -INFINITY;
@@ -626,6 +633,8 @@ struct Settler::Impl {
       }
     }
     if (best < 0 || particle.face_stability_margin[best] <= 0) return false;
+    if (std::acos(std::clamp(-(q * particle.hull.faces[best].normal).z(), -1.0, 1.0)) > max_tilt)
+      return false;
 
     // Rotate the face flush about the support point, then lift or lower it onto the wall exactly.
     const HullFace& face = particle.hull.faces[best];
