@@ -361,6 +361,9 @@ struct Settler::Impl {
       if (!finishing && paper_stability_test(contact_points, g)) finishing = true;
     }
     choose_support(fit, g, omega, com_velocity);
+    if (!smooth && touching_points_hold(g, true) &&
+        kinetic_energy() < 1e-9 * body.mass * params.gravity * length && come_to_rest())
+      return;
     if (trace)
       std::fprintf(stderr,
                    "t=%.9g type=%s contact=%zu touching=%zu finishing=%d support=%d line=%d axis=%g,%g,%g "
@@ -392,10 +395,13 @@ struct Settler::Impl {
 
   // Static equilibrium on the wall: the touching points surround the centre of mass's projection (or it lies
   // on their segment, a balanced edge).
-  bool touching_points_hold(const Vec2& g) const {
+  // A segment (two or more collinear touching points) holds only a particle that has no motion left to roll
+  // over it: one passing over an edge has its centre of mass above the edge for an instant too.
+  bool touching_points_hold(const Vec2& g, bool segments_too = false) const {
     if (touching.size() < 2) return false;
     const std::vector<Vec2> poly = touching_polygon();
-    return poly.size() >= 2 && sim::polygon_margin(poly, g) > -touch_tol;
+    const std::size_t needed = segments_too ? 2 : 3;
+    return poly.size() >= needed && sim::polygon_margin(poly, g) > -touch_tol;
   }
 
   // §2.4: a contact element (a hull face all of whose vertices are contacts) hit by the downward ray from the
