@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_test_support.hpp"
 #include "run_cli.hpp"
 
 namespace {
@@ -20,6 +21,8 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using repose::test::CliResult;
+using repose::test::expect_bad_input;
+using repose::test::parse_json;
 using repose::test::run_cli;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
@@ -36,44 +39,7 @@ std::string quote(const std::string& s) {
 
 std::string data(const std::string& name) { return quote(kData + "/" + name); }
 
-/// Asserts the contract for bad input: exit code 2, nothing on stdout, exactly one line on stderr that starts
-/// with "repose: error: " and contains every string in `expected` (the input's name and the problem).
-void expect_bad_input(const CliResult& r, const std::vector<std::string>& expected) {
-  EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_EQ(r.out, "");
-  EXPECT_THAT(r.err, StartsWith("repose: error: "));
-  ASSERT_FALSE(r.err.empty());
-  EXPECT_EQ(r.err.back(), '\n') << r.err;
-  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "more than one line: " << r.err;
-  for (const std::string& s : expected) EXPECT_THAT(r.err, HasSubstr(s));
-}
-
-json parse_json(const CliResult& r) {
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  json j = json::parse(r.out, nullptr, /*allow_exceptions=*/false);
-  EXPECT_FALSE(j.is_discarded()) << "stdout is not JSON:\n" << r.out;
-  return j;
-}
-
-/// Every test gets a fresh temporary directory, removed afterwards.
-class InfoCli : public ::testing::Test {
- protected:
-  void SetUp() override {
-    std::string pattern = (fs::temp_directory_path() / "repose_info_cli_XXXXXX").string();
-    ASSERT_NE(::mkdtemp(pattern.data()), nullptr);
-    dir_ = pattern;
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  std::vector<std::string> entries() const {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().filename().string());
-    return names;
-  }
-  fs::path dir_;
-};
+class InfoCli : public repose::test::TempDirTest {};
 
 // ---------------------------------------------------------------------------------------------------------
 // Bad input: files.

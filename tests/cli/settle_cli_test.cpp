@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_test_support.hpp"
 #include "run_cli.hpp"
 
 namespace {
@@ -23,6 +24,8 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using repose::test::CliResult;
+using repose::test::expect_bad_input;
+using repose::test::parse_json;
 using repose::test::run_cli;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
@@ -53,25 +56,6 @@ std::string exact(double x) {
   return buf;
 }
 
-/// Asserts the contract for bad input: exit code 2, nothing on stdout, exactly one line on stderr that starts
-/// with "repose: error: " and contains every string in `expected`.
-void expect_bad_input(const CliResult& r, const std::vector<std::string>& expected) {
-  EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_EQ(r.out, "");
-  EXPECT_THAT(r.err, StartsWith("repose: error: "));
-  ASSERT_FALSE(r.err.empty());
-  EXPECT_EQ(r.err.back(), '\n') << r.err;
-  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "more than one line: " << r.err;
-  for (const std::string& s : expected) EXPECT_THAT(r.err, HasSubstr(s));
-}
-
-json parse_json(const CliResult& r, int exit_code = 0) {
-  EXPECT_EQ(r.exit_code, exit_code) << r.err;
-  json j = json::parse(r.out, nullptr, /*allow_exceptions=*/false);
-  EXPECT_FALSE(j.is_discarded()) << "stdout is not JSON:\n" << r.out;
-  return j;
-}
-
 std::vector<double> numbers(const json& v) {
   std::vector<double> out;
   if (v.is_array())
@@ -97,26 +81,7 @@ std::vector<double> rotate(const std::vector<double>& q, const std::vector<doubl
   return out;
 }
 
-/// Every test gets a fresh temporary directory, removed afterwards.
-class SettleCli : public ::testing::Test {
- protected:
-  void SetUp() override {
-    std::string pattern = (fs::temp_directory_path() / "repose_settle_cli_XXXXXX").string();
-    ASSERT_NE(::mkdtemp(pattern.data()), nullptr);
-    dir_ = pattern;
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  static std::vector<std::string> entries(const fs::path& d) {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(d)) names.push_back(e.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-  }
-  fs::path dir_;
-};
+class SettleCli : public repose::test::TempDirTest {};
 
 // ---------------------------------------------------------------------------------------------------------
 // The reference run.

@@ -1,0 +1,61 @@
+// Shared by the command-line tests: the bad-input contract, JSON output, and a fresh directory per test.
+#pragma once
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "run_cli.hpp"
+
+namespace repose::test {
+
+/// Bad input: exit code 2, nothing on stdout, exactly one line on stderr that starts with "repose: error: "
+/// and contains every string in `expected` (the input's name and the problem).
+inline void expect_bad_input(const CliResult& r, const std::vector<std::string>& expected) {
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(r.out, "");
+  EXPECT_THAT(r.err, ::testing::StartsWith("repose: error: "));
+  ASSERT_FALSE(r.err.empty());
+  EXPECT_EQ(r.err.back(), '\n') << r.err;
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "more than one line: " << r.err;
+  for (const std::string& s : expected) EXPECT_THAT(r.err, ::testing::HasSubstr(s));
+}
+
+/// Standard output parsed as JSON, after checking the exit code.
+inline nlohmann::json parse_json(const CliResult& r, int exit_code = 0) {
+  EXPECT_EQ(r.exit_code, exit_code) << r.err;
+  nlohmann::json j = nlohmann::json::parse(r.out, nullptr, /*allow_exceptions=*/false);
+  EXPECT_FALSE(j.is_discarded()) << "stdout is not JSON:\n" << r.out;
+  return j;
+}
+
+/// Every test gets a fresh temporary directory `dir_`, removed afterwards.
+class TempDirTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string pattern = (std::filesystem::temp_directory_path() / "repose_cli_test_XXXXXX").string();
+    ASSERT_NE(::mkdtemp(pattern.data()), nullptr);
+    dir_ = pattern;
+  }
+  void TearDown() override {
+    std::error_code ec;
+    std::filesystem::remove_all(dir_, ec);
+  }
+  /// Names in a directory (default: the test's own), sorted.
+  std::vector<std::string> entries(const std::filesystem::path& d = {}) const {
+    std::vector<std::string> names;
+    for (const auto& e : std::filesystem::directory_iterator(d.empty() ? dir_ : d))
+      names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+  std::filesystem::path dir_;
+};
+
+}  // namespace repose::test
