@@ -14,7 +14,7 @@
 // Failures caused by a diagnosed engine bug are listed in kKnownFailures (reported, not failing); each bug
 // has a PropertyEngineBug.DISABLED_* repro below. The 2000-drop sweep takes ~30 s on 2 threads (~50 s on
 // one) in the Release build.
-// Environment (for larger local sweeps): REPOSE_PROPERTY_DROPS (default 2000 in optimised builds, 100 in
+// Environment (for larger local sweeps): REPOSE_PROPERTY_DROPS (default 2000 in optimised builds, 8 in
 // debug/sanitizer builds), REPOSE_PROPERTY_FIRST (first case index, default 0), REPOSE_PROPERTY_SEED (master
 // seed), REPOSE_PROPERTY_THREADS (default 2), REPOSE_PROPERTY_FULL (1: the full case mix, see make_case),
 // REPOSE_PROPERTY_LOG (a CSV file, one line per run). The summary is printed with std::cout (ctest -V shows
@@ -53,11 +53,15 @@ long env_long(const char* var, long fallback) {
 }
 
 #ifdef NDEBUG
+constexpr bool kOptimised = true;
 constexpr long kDefaultDrops = 2000;
 constexpr int kCubeDrops = 1000;
 #else
-constexpr long kDefaultDrops = 100;  // debug + sanitizer builds are ~30x slower
-constexpr int kCubeDrops = 240;
+// Debug + sanitizer builds (CI's asan preset) run the engine ~200x slower (measured: 100 drops took 576 s):
+// they only exercise the harness and the engine's memory safety on a few drops.
+constexpr bool kOptimised = false;
+constexpr long kDefaultDrops = 8;
+constexpr int kCubeDrops = 12;
 #endif
 
 struct Sweep {
@@ -299,6 +303,7 @@ TEST(PropertyKnownAnswer, CubeOnEdgeAtExactly45Degrees) {
   // (unit cube), so starting at 1e-8 instead of 1e-3 takes ln(1e5)/λ longer (measured: 0.357 s both ways).
   std::map<double, double> times;
   for (double delta : {1e-3, -1e-3, 1e-8, -1e-8}) {
+    if (!kOptimised && std::abs(delta) < 1e-3) continue;
     Case c;
     c.spec = "box:x=1,y=1,z=1";
     c.orientation = Quat(Eigen::AngleAxisd(std::numbers::pi / 4 + delta, Vec3::UnitX()));
@@ -311,6 +316,7 @@ TEST(PropertyKnownAnswer, CubeOnEdgeAtExactly45Degrees) {
     EXPECT_GT(o.result.time, 0) << "delta " << delta;
     times[delta] = o.result.time;
   }
+  if (!kOptimised) return;
   const double lambda = std::sqrt(kG * std::sqrt(0.5) / (2.0 / 3.0));
   EXPECT_NEAR(times[1e-8] - times[1e-3], std::log(1e5) / lambda, 0.01 * std::log(1e5) / lambda);
   EXPECT_NEAR(times[-1e-8] - times[-1e-3], std::log(1e5) / lambda, 0.01 * std::log(1e5) / lambda);
@@ -361,6 +367,7 @@ TEST(PropertyKnownAnswer, CubeRestFaceDistributionIsRoughlyUniform) {
   for (const auto& [face, n] : counts) std::cout << " " << face << "=" << n;
   std::cout << " (not at rest: " << not_rest << ")\n";
   EXPECT_EQ(not_rest, 0);
+  if (!kOptimised) return;  // too few drops for a distribution
   EXPECT_EQ(counts.size(), 6u);
   for (const auto& [face, n] : counts) {
     EXPECT_GT(n, kCubeDrops / 12) << face;
