@@ -87,6 +87,7 @@ struct Case {
   double damping_fraction = 0;  ///< damping as a fraction of m·L²·sqrt(g/L)
   long max_steps = 0;           ///< 0: the default SettleParams::max_steps
   double damping = -1;          ///< if ≥ 0, the damping coefficient itself (overrides damping_fraction)
+  double drop_height = -1;      ///< if ≥ 0, the drop height itself (overrides drop_fraction)
 };
 
 /// Step budget of a possibly-smooth ellipsoid in the budgeted sweep (~6 s of CPU at its worst).
@@ -183,7 +184,7 @@ inline SettleParams params_for(const Case& c, const Particle& p) {
   SettleParams prm;
   prm.gravity = kG;
   prm.smooth = c.smooth;
-  prm.drop_height = c.drop_fraction * p.length;
+  prm.drop_height = c.drop_height >= 0 ? c.drop_height : c.drop_fraction * p.length;
   prm.damping = c.damping >= 0
                     ? c.damping
                     : c.damping_fraction * p.mass.mass * p.length * p.length * std::sqrt(kG / p.length);
