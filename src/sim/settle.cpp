@@ -587,6 +587,9 @@ struct Settler::Impl {
       const double vz = w.cross(r).z();
       const double az = (alpha.cross(r) + w.cross(w.cross(r))).z();
       if (vz < -v_tol || (vz <= v_tol && az < -a_tol)) return false;
+      // Rising, but pulled back within a tenth of a step: it would be on the wall again at once (a ping-pong
+      // of near-empty steps), so it does not count as separating.
+      if (az < -a_tol && 2 * vz / -az < 0.1 * dt) return false;
     }
     return true;
   }

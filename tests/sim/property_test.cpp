@@ -532,7 +532,7 @@ TEST(PropertyEngineBug, DISABLED_EdgeBalanceSnapsOntoAFaceUpToElevenDegreesAway)
 // a ping-pong A, B, A, ... one event per step, so each step is ~1% of dt and costs 48 bisections. Case 216
 // needs 1.5e6 steps (40 s of CPU) to rest. A point whose flight time 2·v_z/|a_z| is a small part of dt does
 // not really separate: pivoting about A and B together (choose_from_touching) is the motion.
-TEST(PropertyEngineBug, DISABLED_SmoothEdgeRockingPingPongsBetweenTwoPivots) {
+TEST(PropertyEngineBug, SmoothEdgeRockingPingPongsBetweenTwoPivots) {
   struct Repro {
     const char* spec;
     const char* orientation;
