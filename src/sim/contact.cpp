@@ -1,6 +1,7 @@
 #include "contact.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <cmath>
 
 namespace repose::sim {
 
@@ -11,6 +12,18 @@ LineFit fit_line(const std::vector<Vec3>& points) {
   fit.centroid /= static_cast<double>(points.size());
   Mat3 scatter = Mat3::Zero();
   for (const Vec3& p : points) scatter += (p - fit.centroid) * (p - fit.centroid).transpose();
+  if (scatter.row(2).isZero(0.0)) {
+    // Points in a plane z = const (the engine fits footprints on the wall every step): the 2×2 problem has a
+    // closed form, [a b; b c] with eigenvalues m ± r. The eigenvector of the larger one is taken from
+    // whichever of its two expressions has the larger norm, so it stays accurate for any orientation.
+    const double a = scatter(0, 0), b = scatter(0, 1), c = scatter(1, 1);
+    const double m = 0.5 * (a + c), r = std::hypot(0.5 * (a - c), b);
+    const Vec2 u(b, m + r - a), v(m + r - c, b);
+    const Vec2 dir = u.squaredNorm() >= v.squaredNorm() ? u : v;
+    fit.direction = dir.squaredNorm() > 0 ? Vec3(dir.x(), dir.y(), 0).normalized() : Vec3::UnitX();
+    fit.rss = std::max(0.0, m - r);
+    return fit;
+  }
   const Eigen::SelfAdjointEigenSolver<Mat3> eig(scatter);
   fit.direction = eig.eigenvectors().col(2).normalized();  // largest spread
   // Residual = total scatter minus the part along the line.

@@ -14,20 +14,30 @@ Vec3 project_on_axis(const Support& s, const Vec3& v) { return s.line ? Vec3(v.d
 
 Vec3 com_position(const Support& s, const Quat& q) { return s.world - q * s.body; }
 
+namespace {
+// The inertia tensor about the support point in body coordinates (parallel-axis theorem). Working in the body
+// frame keeps it a sum of constants and spares the two rotations of a 3×3 matrix per call.
+Mat3 body_inertia_about_support(const Body& body, const Support& s) {
+  const Vec3& r = s.body;  // centre of mass → support, body frame (the sign does not matter here)
+  return body.inertia + body.mass * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
+}
+}  // namespace
+
 Mat3 inertia_about_support(const Body& body, const Support& s, const Quat& q) {
   const Mat3 R = q.toRotationMatrix();
-  const Vec3 r = -(R * s.body);  // support → centre of mass
-  return R * body.inertia * R.transpose() +
-         body.mass * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
+  return R * body_inertia_about_support(body, s) * R.transpose();
 }
 
 Vec3 omega_from_momentum(const Body& body, const Support& s, const Quat& q, const Vec3& momentum) {
-  const Mat3 I = inertia_about_support(body, s, q);
+  const Mat3 I = body_inertia_about_support(body, s);
   if (s.line) {
     // A rotation constrained to the axis e has ω = ω_e·e, and its momentum component is eᵀ I e · ω_e.
-    return (momentum.dot(s.axis) / s.axis.dot(I * s.axis)) * s.axis;
+    const Vec3 e = q.conjugate() * s.axis;
+    return (momentum.dot(s.axis) / e.dot(I * e)) * s.axis;
   }
-  return I.ldlt().solve(momentum);
+  // ω = R I⁻¹ Rᵀ L. I is symmetric positive definite (a solid's inertia about any point), so its fixed-size
+  // closed-form inverse is well conditioned.
+  return q * Vec3(I.inverse() * (q.conjugate() * momentum));
 }
 
 Vec3 moment(const Body& body, const Support& s, const Quat& q, const Vec3& omega) {
@@ -66,7 +76,8 @@ Vec3 momentum_after_switch(const Body& body, const Quat& q, const Vec3& com, con
 }
 
 double rotational_energy(const Body& body, const Support& s, const Quat& q, const Vec3& omega) {
-  return 0.5 * omega.dot(inertia_about_support(body, s, q) * omega);
+  const Vec3 w = q.conjugate() * omega;
+  return 0.5 * w.dot(body_inertia_about_support(body, s) * w);
 }
 
 }  // namespace repose::sim

@@ -114,7 +114,14 @@ struct Settler::Impl {
   std::vector<double> z;      // world heights of the hull vertices
   std::vector<int> contact;   // hull vertices within ε
   std::vector<int> touching;  // hull vertices on the wall
+  std::vector<Vec3>
+      contact_points;  // scratch, world coordinates of `contact` (kept to avoid allocating per step)
+  std::vector<Vec3> footprints;       // scratch, their projections on the wall
+  std::vector<double> next_z;         // scratch, heights at the end of a trial step
+  std::vector<int> event_candidates;  // scratch, vertices that may cause an event within a step
   std::vector<char> in_contact;
+  std::vector<std::vector<int>>
+      first_vertex_faces;   // per hull vertex: the hull faces whose loop starts there
   double quiet_since = -1;  // smooth particles: since when the rest conditions have held (−1: not)
   std::vector<Phase> phases;
   double max_penetration = 0;
@@ -148,6 +155,9 @@ struct Settler::Impl {
     for (const Vec3& v : p.hull.vertices) hull_radius = std::max(hull_radius, v.norm());
     z.resize(n);
     in_contact.resize(n);
+    first_vertex_faces.resize(n);
+    for (std::size_t f = 0; f < p.hull.faces.size(); ++f)
+      first_vertex_faces[p.hull.faces[f].loop.front()].push_back(static_cast<int>(f));
     lowest_body_height = INFINITY;
     for (const Vec3& v : p.hull.vertices) lowest_body_height = std::min(lowest_body_height, (q * v).z());
     com = Vec3(0, 0, params.drop_height - lowest_body_height);
@@ -252,11 +262,13 @@ struct Settler::Impl {
 
     // Eq 2's idea, the bounding test that gates the exact distance query: a vertex can only cause an event
     // inside this step if it ends it, or starts it, within the arc length the step can sweep of the levels.
-    std::vector<double> zz(z.size());
+    std::vector<double>& zz = next_z;
+    zz.resize(z.size());
     heights(next.q, zz);
     const double swept = 2 * std::acos(std::min(1.0, std::abs(rot.q.dot(next.q)))) * reach_radius;
     const double level = smooth ? 0.0 : band;
-    std::vector<int> candidates;
+    std::vector<int>& candidates = event_candidates;
+    candidates.clear();
     bool event = false;
     for (std::size_t k = 0; k < zz.size(); ++k) {
       if (std::min(z[k], zz[k]) <= level + swept + event_tol) candidates.push_back(static_cast<int>(k));
@@ -302,7 +314,9 @@ struct Settler::Impl {
     com = sim::com_position(support, q);
     t += taken;
     ++steps;
-    update_contacts(omega_before, omega_before.cross(com - support.world));
+    // Without an event the step ends at next.q, whose heights are already known.
+    if (!event) z.swap(next_z);
+    update_contacts(omega_before, omega_before.cross(com - support.world), /*heights_known=*/!event);
   }
 
   // ---- contacts, stability and supports
@@ -310,8 +324,8 @@ struct Settler::Impl {
 
   // Recomputes the contact and touching sets, checks for rest, and switches the support if the contacts call
   // for another one. `omega` and `com_velocity` are the motion just before (for the impact law).
-  void update_contacts(const Vec3& omega, const Vec3& com_velocity) {
-    heights(q, z);
+  void update_contacts(const Vec3& omega, const Vec3& com_velocity, bool heights_known = false) {
+    if (!heights_known) heights(q, z);
     contact.clear();
     touching.clear();
     double lowest = INFINITY;
@@ -328,10 +342,12 @@ struct Settler::Impl {
     // The regression of Algorithm 1 is done on the contact points' footprints on the wall, so the fitted
     // contact line lies in the wall plane: a hinge tilted by the ε band would make the particle swing about
     // an unphysical equilibrium above the wall.
-    std::vector<Vec3> contact_points;
-    for (int k : contact) contact_points.push_back(world_vertex(k));
-    std::vector<Vec3> footprints = contact_points;
-    for (Vec3& p : footprints) p.z() = 0;
+    contact_points.clear();
+    footprints.clear();
+    for (int k : contact) {
+      contact_points.push_back(world_vertex(k));
+      footprints.emplace_back(contact_points.back().x(), contact_points.back().y(), 0.0);
+    }
     sim::LineFit fit;
     const ContactType new_type =
         smooth ? ContactType::point : sim::classify_contact(footprints, rss_threshold, &fit);
@@ -409,15 +425,20 @@ struct Settler::Impl {
   bool paper_stability_test(const std::vector<Vec3>& contact_points, const Vec2& g) const {
     if (contact.size() < 3) return false;
     const Vec3 down(0, 0, -1);
-    for (const HullFace& face : particle.hull.faces) {
-      bool element = true;
-      for (int k : face.loop) element = element && in_contact[k];
-      if (!element) continue;
-      const Vec3 a = world_vertex(face.loop[0]);
-      for (std::size_t i = 1; i + 1 < face.loop.size(); ++i)
-        if (sim::ray_hits_triangle(com, down, a, world_vertex(face.loop[i]), world_vertex(face.loop[i + 1])))
-          return true;
-    }
+    // Only faces whose first vertex is a contact can be contact elements; visiting just those keeps this
+    // check proportional to the contacts, not to the hull (thousands of faces for a scanned grain).
+    for (int first : contact)
+      for (int f : first_vertex_faces[first]) {
+        const HullFace& face = particle.hull.faces[f];
+        bool element = true;
+        for (int k : face.loop) element = element && in_contact[k];
+        if (!element) continue;
+        const Vec3 a = world_vertex(face.loop[0]);
+        for (std::size_t i = 1; i + 1 < face.loop.size(); ++i)
+          if (sim::ray_hits_triangle(com, down, a, world_vertex(face.loop[i]),
+                                     world_vertex(face.loop[i + 1])))
+            return true;
+      }
     return contact_polygon_margin(contact_points, g) > 0;
   }
 
