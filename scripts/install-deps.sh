@@ -4,7 +4,7 @@
 set -euo pipefail
 packages=(
   g++ cmake make pkg-config git
-  libeigen3-dev libcli11-dev nlohmann-json3-dev libqhull-dev libassimp-dev libtbb-dev
+  libeigen3-dev libcli11-dev nlohmann-json3-dev libqhull-dev libassimp-dev libtbb-dev librandom123-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-matplotlib
 )

@@ -15,5 +15,7 @@ struct Command {
 Command add_info_command(CLI::App& app);
 Command add_settle_command(CLI::App& app);
 Command add_paper_command(CLI::App& app);
+Command add_poses_command(CLI::App& app);
+Command add_merge_command(CLI::App& app);
 
 }  // namespace repose::cli

@@ -17,6 +17,8 @@ int main(int argc, char** argv) {
       repose::cli::add_info_command(app),
       repose::cli::add_settle_command(app),
       repose::cli::add_paper_command(app),
+      repose::cli::add_poses_command(app),
+      repose::cli::add_merge_command(app),
   };
   try {
     app.parse(argc, argv);

@@ -32,6 +32,25 @@ void write_file_atomically(const std::string& path, const std::string& content) 
   }
 }
 
+std::string read_text_file(const std::string& path, std::size_t max_bytes) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) throw Error(path + ": cannot read: " + std::strerror(errno));
+  std::string text;
+  char buffer[1 << 16];
+  std::size_t got = 0;
+  while ((got = std::fread(buffer, 1, sizeof buffer, f)) > 0) {
+    if (text.size() + got > max_bytes) {
+      std::fclose(f);
+      throw Error(path + ": cannot read: larger than " + std::to_string(max_bytes) + " bytes");
+    }
+    text.append(buffer, got);
+  }
+  const bool failed = std::ferror(f) != 0;
+  std::fclose(f);
+  if (failed) throw Error(path + ": cannot read: I/O error");
+  return text;
+}
+
 void ensure_output_directory(const std::string& dir) {
   namespace fs = std::filesystem;
   std::error_code ec;

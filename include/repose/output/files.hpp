@@ -2,12 +2,17 @@
 // and renamed into place, so an interrupted run leaves either the old file or the new one.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 namespace repose {
 
 /// Writes `content` to `path` atomically. Throws repose::Error ("PATH: cannot write: reason").
 void write_file_atomically(const std::string& path, const std::string& content);
+
+/// Reads a whole text file (a result file being merged, for instance). Throws repose::Error ("PATH: cannot
+/// read: reason") if it cannot be opened or is larger than `max_bytes`.
+std::string read_text_file(const std::string& path, std::size_t max_bytes = std::size_t{1} << 30);
 
 /// Creates `dir` (and parents) if needed and checks it is a writable directory. Throws repose::Error.
 void ensure_output_directory(const std::string& dir);

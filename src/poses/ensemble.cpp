@@ -1,0 +1,256 @@
+#include "repose/poses/ensemble.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <mutex>
+
+#include "repose/error.hpp"
+#include "repose/poses/sampling.hpp"
+
+namespace repose {
+
+namespace {
+
+// Drops per task: large enough to amortise scheduling, small enough to balance 2 to 64 cores.
+constexpr std::uint64_t kGrain = 64;
+
+struct DropOutcome {
+  int pose = -1;  // −1 if the run did not rest
+  Status status = Status::running;
+  bool decided_early = false;
+  long steps = 0;
+  Quat orientation = Quat::Identity();  // final orientation; meaningful only if !decided_early
+};
+
+const Vec3 kDown(0, 0, -1);
+
+// The orientation closest to `q` that puts `face` flush on the wall: tilt `q` by the smallest rotation taking
+// the face's outward normal to world −z.
+Quat flush_orientation(const Particle& particle, int face, const Quat& q) {
+  const Vec3 normal_world = q * particle.hull.faces[face].normal;
+  return (Quat::FromTwoVectors(normal_world, kDown) * q).normalized();
+}
+
+double largest_finite_or_inf(const RestPoseCatalog& catalog) {
+  double m = -std::numeric_limits<double>::infinity();
+  for (const RestPose& pose : catalog.poses) m = std::max(m, pose.barrier);
+  return m;
+}
+
+DropOutcome run_dynamic_drop(const Particle& particle, const RestLandscape& landscape,
+                             const RestPoseCatalog& catalog, const SettleParams& params, const Quat& start,
+                             bool decide_early) {
+  Settler settler(particle, params, start);
+  const double weight = particle.mass.mass * params.gravity;
+  // Round-off margin on the energy test: the engine's energy drift is < 1e-11·m·g·L (tests/sim).
+  const double margin = 1e-6 * particle.length;
+  const double highest_barrier = largest_finite_or_inf(catalog);
+  DropOutcome out;
+  while (settler.step()) {
+    if (!decide_early) continue;
+    const Sample sample = settler.sample();
+    // The centre of mass is never below h(down) (no vertex below the wall), so this level bounds how high
+    // on the COM-height landscape the particle can still climb.
+    const double level = (sample.kinetic_energy + sample.potential_energy) / weight;
+    if (!(level < highest_barrier - margin)) continue;
+    const Vec3 down = sample.orientation.conjugate() * kDown;
+    const int pose = catalog.face_pose[quasi_static_rest_face(particle, landscape, down)];
+    if (level < catalog.poses[pose].barrier - margin) {
+      out.pose = pose;
+      out.status = Status::rest;
+      out.decided_early = true;
+      out.steps = settler.result().steps;
+      return out;
+    }
+  }
+  const SettleResult result = settler.result();
+  out.status = result.status;
+  out.steps = result.steps;
+  out.orientation = result.orientation;
+  if (result.status == Status::rest) {
+    if (result.rest_face < 0) throw Error(particle.name + ": a run rested on no hull face (internal error)");
+    out.pose = catalog.face_pose[result.rest_face];
+  }
+  return out;
+}
+
+DropOutcome run_quasi_static_drop(const Particle& particle, const RestLandscape& landscape,
+                                  const RestPoseCatalog& catalog, const Quat& start) {
+  const int face = quasi_static_rest_face(particle, landscape, start.conjugate() * kDown);
+  DropOutcome out;
+  out.pose = catalog.face_pose[face];
+  out.status = Status::rest;
+  out.orientation = flush_orientation(particle, face, start);
+  return out;
+}
+
+// A tally plus, per pose, whether its first drop still needs a full run for its final orientation.
+struct PartialTally {
+  EnsembleTally tally;
+  std::vector<bool> first_decided_early;
+
+  explicit PartialTally(std::size_t poses) : first_decided_early(poses, false) { tally.poses.resize(poses); }
+
+  void add(std::uint64_t drop, const DropOutcome& outcome) {
+    ++tally.status_counts[static_cast<int>(outcome.status)];
+    tally.steps += static_cast<std::uint64_t>(outcome.steps);
+    if (outcome.decided_early) ++tally.decided_early;
+    if (outcome.pose < 0) return;
+    PoseTally& pose = tally.poses[outcome.pose];
+    ++pose.count;
+    if (drop < pose.first_drop) {
+      pose.first_drop = drop;
+      pose.orientation = outcome.orientation;
+      first_decided_early[outcome.pose] = outcome.decided_early;
+    }
+  }
+
+  // Integer sums and minima: the result does not depend on the order blocks finish in.
+  void absorb(const PartialTally& other) {
+    for (int s = 0; s < 4; ++s) tally.status_counts[s] += other.tally.status_counts[s];
+    tally.steps += other.tally.steps;
+    tally.decided_early += other.tally.decided_early;
+    for (std::size_t p = 0; p < tally.poses.size(); ++p) {
+      const PoseTally& theirs = other.tally.poses[p];
+      PoseTally& ours = tally.poses[p];
+      ours.count += theirs.count;
+      if (theirs.first_drop < ours.first_drop) {
+        ours.first_drop = theirs.first_drop;
+        ours.orientation = theirs.orientation;
+        first_decided_early[p] = other.first_decided_early[p];
+      }
+    }
+  }
+};
+
+}  // namespace
+
+const char* to_string(PoseMethod method) {
+  return method == PoseMethod::dynamic ? "dynamic" : "quasi-static";
+}
+
+PoseMethod parse_pose_method(const std::string& text) {
+  if (text == "dynamic") return PoseMethod::dynamic;
+  if (text == "quasi-static") return PoseMethod::quasi_static;
+  throw Error("unknown method '" + text + "' (expected dynamic or quasi-static)");
+}
+
+std::uint64_t EnsembleTally::drops() const {
+  std::uint64_t n = 0;
+  for (const DropRange& r : ranges) n += r.size();
+  return n;
+}
+
+EnsembleTally run_ensemble(const Particle& particle, const RestLandscape& landscape,
+                           const RestPoseCatalog& catalog, const EnsembleOptions& options) {
+  if (options.drops.end < options.drops.begin)
+    throw Error("drop range: end " + std::to_string(options.drops.end) + " is before begin " +
+                std::to_string(options.drops.begin));
+  if (options.threads < 0)
+    throw Error("threads must be >= 0 (0 = all cores), got " + std::to_string(options.threads));
+  if (options.method == PoseMethod::dynamic) validate(options.params);
+  const auto start_time = std::chrono::steady_clock::now();
+
+  PartialTally total(catalog.poses.size());
+  std::mutex total_mutex;
+  const auto run_drop = [&](std::uint64_t i) {
+    const Quat start = drop_orientation(options.seed, i);
+    return options.method == PoseMethod::dynamic
+               ? run_dynamic_drop(particle, landscape, catalog, options.params, start, options.decide_early)
+               : run_quasi_static_drop(particle, landscape, catalog, start);
+  };
+  const int threads = options.threads > 0 ? options.threads : tbb::task_arena::automatic;
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::uint64_t>(options.drops.begin, options.drops.end, kGrain),
+                      [&](const tbb::blocked_range<std::uint64_t>& block) {
+                        PartialTally local(catalog.poses.size());
+                        for (std::uint64_t i = block.begin(); i != block.end(); ++i) {
+                          local.add(i, run_drop(i));
+                          if (options.progress) options.progress->fetch_add(1, std::memory_order_relaxed);
+                        }
+                        const std::lock_guard lock(total_mutex);
+                        total.absorb(local);
+                      });
+  });
+
+  // A pose's representative is its first drop's final orientation; if that drop stopped early, finish it.
+  for (std::size_t p = 0; p < catalog.poses.size(); ++p) {
+    PoseTally& pose = total.tally.poses[p];
+    if (pose.count == 0 || !total.first_decided_early[p]) continue;
+    const DropOutcome full = run_dynamic_drop(particle, landscape, catalog, options.params,
+                                              drop_orientation(options.seed, pose.first_drop), false);
+    // Should the full run end elsewhere (it must not, by the energy argument), fall back to the start
+    // orientation set flush on the pose's face, which still shows the pose.
+    pose.orientation = full.pose == static_cast<int>(p)
+                           ? full.orientation
+                           : flush_orientation(particle, catalog.poses[p].face,
+                                               drop_orientation(options.seed, pose.first_drop));
+  }
+
+  EnsembleTally tally = std::move(total.tally);
+  tally.seed = options.seed;
+  tally.method = options.method;
+  if (options.drops.size() > 0) tally.ranges.push_back(options.drops);
+  tally.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  return tally;
+}
+
+EnsembleTally merge_tallies(const EnsembleTally& a, const EnsembleTally& b) {
+  if (a.seed != b.seed)
+    throw Error("cannot merge results of different seeds (" + std::to_string(a.seed) + " and " +
+                std::to_string(b.seed) + ")");
+  if (a.method != b.method)
+    throw Error(std::string("cannot merge results of different methods (") + to_string(a.method) + " and " +
+                to_string(b.method) + ")");
+  if (a.poses.size() != b.poses.size())
+    throw Error("cannot merge results with different rest-pose catalogues (" +
+                std::to_string(a.poses.size()) + " and " + std::to_string(b.poses.size()) + " poses)");
+  EnsembleTally m = a;
+  m.ranges.insert(m.ranges.end(), b.ranges.begin(), b.ranges.end());
+  std::sort(m.ranges.begin(), m.ranges.end(),
+            [](const DropRange& x, const DropRange& y) { return x.begin < y.begin; });
+  std::vector<DropRange> coalesced;
+  for (const DropRange& r : m.ranges) {
+    if (!coalesced.empty() && r.begin < coalesced.back().end)
+      throw Error("cannot merge overlapping drop ranges [" + std::to_string(coalesced.back().begin) + ", " +
+                  std::to_string(coalesced.back().end) + ") and [" + std::to_string(r.begin) + ", " +
+                  std::to_string(r.end) + ")");
+    if (!coalesced.empty() && r.begin == coalesced.back().end)
+      coalesced.back().end = r.end;
+    else
+      coalesced.push_back(r);
+  }
+  m.ranges = std::move(coalesced);
+  for (int s = 0; s < 4; ++s) m.status_counts[s] += b.status_counts[s];
+  m.decided_early += b.decided_early;
+  m.steps += b.steps;
+  m.seconds += b.seconds;
+  for (std::size_t p = 0; p < m.poses.size(); ++p) {
+    m.poses[p].count += b.poses[p].count;
+    if (b.poses[p].first_drop < m.poses[p].first_drop) {
+      m.poses[p].first_drop = b.poses[p].first_drop;
+      m.poses[p].orientation = b.poses[p].orientation;
+    }
+  }
+  return m;
+}
+
+std::array<double, 2> wilson_interval(std::uint64_t count, std::uint64_t n, double z) {
+  if (n == 0) return {0.0, 1.0};
+  const double nn = static_cast<double>(n);
+  const double p = static_cast<double>(count) / nn;
+  const double z2 = z * z;
+  const double centre = (p + z2 / (2 * nn)) / (1 + z2 / nn);
+  const double half = z / (1 + z2 / nn) * std::sqrt(p * (1 - p) / nn + z2 / (4 * nn * nn));
+  // At k = 0 and k = n the bounds are exactly 0 and 1; say so rather than leave round-off.
+  return {count == 0 ? 0.0 : std::max(0.0, centre - half), count == n ? 1.0 : std::min(1.0, centre + half)};
+}
+
+}  // namespace repose

@@ -1,0 +1,37 @@
+#include "repose/poses/sampling.hpp"
+
+#include <Random123/philox.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace repose {
+
+namespace {
+
+// Keeps this generator's stream apart from any other use of the same seed (ASCII "reposeSO3").
+constexpr std::uint64_t kStreamKey = 0x7265706f736553ULL;
+
+// The top 53 bits as a double in [0, 1): exact, and never 1.
+double to_unit_interval(std::uint64_t bits) { return static_cast<double>(bits >> 11) * 0x1.0p-53; }
+
+}  // namespace
+
+std::array<double, 3> drop_uniforms(std::uint64_t seed, std::uint64_t index) {
+  using Philox = r123::Philox4x64;
+  const Philox::ctr_type counter = {{index, 0, 0, 0}};
+  const Philox::key_type key = {{seed, kStreamKey}};
+  const Philox::ctr_type bits = Philox{}(counter, key);
+  return {to_unit_interval(bits[0]), to_unit_interval(bits[1]), to_unit_interval(bits[2])};
+}
+
+Quat drop_orientation(std::uint64_t seed, std::uint64_t index) {
+  const auto [u1, u2, u3] = drop_uniforms(seed, index);
+  const double r1 = std::sqrt(1.0 - u1);
+  const double r2 = std::sqrt(u1);
+  const double a = 2.0 * std::numbers::pi * u2;
+  const double b = 2.0 * std::numbers::pi * u3;
+  return Quat(r2 * std::cos(b), r1 * std::sin(a), r1 * std::cos(a), r2 * std::sin(b));
+}
+
+}  // namespace repose

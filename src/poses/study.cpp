@@ -1,0 +1,273 @@
+#include "repose/poses/study.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <numeric>
+#include <sstream>
+
+#include "repose/error.hpp"
+
+namespace repose {
+
+namespace {
+
+using nlohmann::json;
+
+json vec_json(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+json quat_json(const Quat& q) { return {q.w(), q.x(), q.y(), q.z()}; }
+
+const char* smooth_mode_name(SmoothMode mode) {
+  return mode == SmoothMode::on ? "on" : mode == SmoothMode::off ? "off" : "auto";
+}
+
+SmoothMode parse_smooth_mode(const std::string& s) {
+  if (s == "on") return SmoothMode::on;
+  if (s == "off") return SmoothMode::off;
+  if (s == "auto") return SmoothMode::automatic;
+  throw Error("unknown smooth mode '" + s + "'");
+}
+
+constexpr const char* kStatusNames[] = {"running", "rest", "max_time", "max_steps"};
+
+json settings_json(const PosesStudy& s) {
+  const SettleParams& p = s.params;
+  return {{"gravity", p.gravity},
+          {"damping", p.damping},
+          {"dt", p.dt},
+          {"contact_threshold", p.contact_threshold},
+          {"line_threshold", p.line_threshold},
+          {"smooth_mode", smooth_mode_name(p.smooth)},
+          {"drop_height", p.drop_height},
+          {"drop_speed", p.drop_speed},
+          {"max_time", p.max_time},
+          {"max_steps", p.max_steps},
+          {"decide_early", s.decide_early},
+          {"persistence", s.catalog.persistence}};
+}
+
+}  // namespace
+
+std::vector<int> report_order(const PosesStudy& study) {
+  std::vector<int> order(study.catalog.poses.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    const std::uint64_t ca = study.tally.poses[a].count, cb = study.tally.poses[b].count;
+    if (ca != cb) return ca > cb;
+    return study.catalog.poses[a].quasi_static_probability > study.catalog.poses[b].quasi_static_probability;
+  });
+  return order;
+}
+
+std::string poses_json(const PosesStudy& s) {
+  const std::uint64_t n = s.tally.drops();
+  json j;
+  j["command"] = "poses";
+  j["particle"] = {{"source", s.source}, {"density", s.density},       {"characteristic_length", s.length},
+                   {"mass", s.mass},     {"hull_faces", s.hull_faces}, {"smooth", s.smooth}};
+  j["method"] = to_string(s.tally.method);
+  j["seed"] = s.tally.seed;
+  j["n"] = n;
+  json ranges = json::array();
+  for (const DropRange& r : s.tally.ranges) ranges.push_back({r.begin, r.end});
+  j["drop_ranges"] = ranges;
+  j["settings"] = settings_json(s);
+  json poses = json::array();
+  for (int p : report_order(s)) {
+    const RestPose& pose = s.catalog.poses[p];
+    const PoseTally& t = s.tally.poses[p];
+    const auto ci = wilson_interval(t.count, n);
+    poses.push_back({{"pose", p},
+                     {"face", pose.face},
+                     {"faces", pose.faces},
+                     {"count", t.count},
+                     {"probability", n ? static_cast<double>(t.count) / static_cast<double>(n) : 0.0},
+                     {"ci95", {ci[0], ci[1]}},
+                     {"quasi_static_probability", pose.quasi_static_probability},
+                     {"down_normal_body", vec_json(pose.down_normal_body)},
+                     {"com_height", pose.com_height},
+                     {"barrier", std::isfinite(pose.barrier) ? json(pose.barrier) : json(nullptr)},
+                     {"orientation", t.count ? quat_json(t.orientation) : json(nullptr)},
+                     {"first_drop", t.count ? json(t.first_drop) : json(nullptr)}});
+  }
+  j["poses"] = poses;
+  json status;
+  for (int k = 1; k < 4; ++k) status[kStatusNames[k]] = s.tally.status_counts[k];
+  j["status_counts"] = status;
+  j["decided_early"] = s.tally.decided_early;
+  j["steps"] = s.tally.steps;
+  j["timing"] = {{"seconds", s.tally.seconds},
+                 {"settles_per_second", s.tally.seconds > 0 ? static_cast<double>(n) / s.tally.seconds : 0.0},
+                 {"threads", s.threads}};
+  return j.dump(2) + "\n";
+}
+
+PosesStudy parse_poses_json(const std::string& text, const std::string& name) {
+  try {
+    const json j = json::parse(text);
+    if (j.value("command", "") != "poses") throw Error(name + ": not a repose poses result file");
+    PosesStudy s;
+    const json& particle = j.at("particle");
+    s.source = particle.at("source").get<std::string>();
+    s.density = particle.at("density").get<double>();
+    s.length = particle.at("characteristic_length").get<double>();
+    s.mass = particle.at("mass").get<double>();
+    s.hull_faces = particle.at("hull_faces").get<int>();
+    s.smooth = particle.at("smooth").get<bool>();
+    s.tally.method = parse_pose_method(j.at("method").get<std::string>());
+    s.tally.seed = j.at("seed").get<std::uint64_t>();
+    for (const json& r : j.at("drop_ranges"))
+      s.tally.ranges.push_back({r.at(0).get<std::uint64_t>(), r.at(1).get<std::uint64_t>()});
+    const json& set = j.at("settings");
+    SettleParams& p = s.params;
+    p.gravity = set.at("gravity").get<double>();
+    p.damping = set.at("damping").get<double>();
+    p.dt = set.at("dt").get<double>();
+    p.contact_threshold = set.at("contact_threshold").get<double>();
+    p.line_threshold = set.at("line_threshold").get<double>();
+    p.smooth = parse_smooth_mode(set.at("smooth_mode").get<std::string>());
+    p.drop_height = set.at("drop_height").get<double>();
+    p.drop_speed = set.at("drop_speed").get<double>();
+    p.max_time = set.at("max_time").get<double>();
+    p.max_steps = set.at("max_steps").get<long>();
+    s.decide_early = set.at("decide_early").get<bool>();
+    s.catalog.persistence = set.at("persistence").get<double>();
+
+    const json& poses = j.at("poses");
+    s.catalog.poses.resize(poses.size());
+    s.tally.poses.resize(poses.size());
+    for (const json& e : poses) {
+      const auto index = e.at("pose").get<std::size_t>();
+      if (index >= poses.size())
+        throw Error(name + ": pose index " + std::to_string(index) + " out of range");
+      RestPose& pose = s.catalog.poses[index];
+      pose.face = e.at("face").get<int>();
+      pose.faces = e.at("faces").get<std::vector<int>>();
+      pose.quasi_static_probability = e.at("quasi_static_probability").get<double>();
+      const auto down = e.at("down_normal_body").get<std::vector<double>>();
+      if (down.size() != 3) throw Error(name + ": down_normal_body needs 3 numbers");
+      pose.down_normal_body = Vec3(down[0], down[1], down[2]);
+      pose.com_height = e.at("com_height").get<double>();
+      pose.barrier =
+          e.at("barrier").is_null() ? std::numeric_limits<double>::infinity() : e.at("barrier").get<double>();
+      PoseTally& t = s.tally.poses[index];
+      t.count = e.at("count").get<std::uint64_t>();
+      if (t.count) {
+        const auto q = e.at("orientation").get<std::vector<double>>();
+        if (q.size() != 4) throw Error(name + ": orientation needs 4 numbers");
+        t.orientation = Quat(q[0], q[1], q[2], q[3]);
+        t.first_drop = e.at("first_drop").get<std::uint64_t>();
+      }
+    }
+    const json& status = j.at("status_counts");
+    for (int k = 1; k < 4; ++k) s.tally.status_counts[k] = status.at(kStatusNames[k]).get<std::uint64_t>();
+    s.tally.decided_early = j.at("decided_early").get<std::uint64_t>();
+    s.tally.steps = j.at("steps").get<std::uint64_t>();
+    s.tally.seconds = j.at("timing").at("seconds").get<double>();
+    s.threads = j.at("timing").at("threads").get<int>();
+    if (s.tally.drops() != j.at("n").get<std::uint64_t>())
+      throw Error(name + ": n does not match drop_ranges");
+    return s;
+  } catch (const json::exception& e) {
+    throw Error(name + ": malformed poses result file (" + std::string(e.what()) + ")");
+  }
+}
+
+PosesStudy merge_studies(const PosesStudy& a, const PosesStudy& b) {
+  const auto require_same = [](bool same, const std::string& what) {
+    if (!same) throw Error("cannot merge results for different " + what);
+  };
+  require_same(a.source == b.source && a.density == b.density && a.length == b.length && a.mass == b.mass &&
+                   a.hull_faces == b.hull_faces && a.smooth == b.smooth,
+               "particles ('" + a.source + "' and '" + b.source + "')");
+  // The settings must agree exactly: the files round-trip doubles, so any difference is a different setting.
+  require_same(json(settings_json(a)) == json(settings_json(b)), "settings (damping, dt, thresholds, ...)");
+  require_same(a.catalog.poses.size() == b.catalog.poses.size(), "rest-pose catalogues");
+  for (std::size_t p = 0; p < a.catalog.poses.size(); ++p)
+    require_same(a.catalog.poses[p].faces == b.catalog.poses[p].faces, "rest-pose catalogues");
+  PosesStudy m = a;
+  m.tally = merge_tallies(a.tally, b.tally);
+  m.threads = std::max(a.threads, b.threads);
+  return m;
+}
+
+std::string poses_csv(const PosesStudy& s) {
+  const std::uint64_t n = s.tally.drops();
+  std::ostringstream out;
+  out.precision(17);
+  out << "pose,face,count,probability,ci95_lo,ci95_hi,quasi_static_probability,down_x,down_y,down_z,"
+         "com_height,barrier,qw,qx,qy,qz\n";
+  for (int p : report_order(s)) {
+    const RestPose& pose = s.catalog.poses[p];
+    const PoseTally& t = s.tally.poses[p];
+    const auto ci = wilson_interval(t.count, n);
+    out << p << ',' << pose.face << ',' << t.count << ','
+        << (n ? static_cast<double>(t.count) / static_cast<double>(n) : 0.0) << ',' << ci[0] << ',' << ci[1]
+        << ',' << pose.quasi_static_probability << ',' << pose.down_normal_body.x() << ','
+        << pose.down_normal_body.y() << ',' << pose.down_normal_body.z() << ',' << pose.com_height << ',';
+    if (std::isfinite(pose.barrier)) out << pose.barrier;
+    out << ',';
+    if (t.count)
+      out << t.orientation.w() << ',' << t.orientation.x() << ',' << t.orientation.y() << ','
+          << t.orientation.z();
+    else
+      out << ",,,";
+    out << '\n';
+  }
+  return out.str();
+}
+
+std::string poses_table(const PosesStudy& s) {
+  const std::uint64_t n = s.tally.drops();
+  char line[256];
+  std::string out;
+  std::snprintf(line, sizeof line, "particle   %s (L = %.6g, %d hull faces%s)\n", s.source.c_str(), s.length,
+                s.hull_faces, s.smooth ? ", smooth" : "");
+  out += line;
+  std::snprintf(line, sizeof line, "drops      %llu (%s, seed %llu)\n", static_cast<unsigned long long>(n),
+                to_string(s.tally.method), static_cast<unsigned long long>(s.tally.seed));
+  out += line;
+  out +=
+      "  pose   face    count  probability  95% interval       quasi-static  COM height  down normal "
+      "(body)\n";
+  const std::vector<int> order = report_order(s);
+  int shown = 0;
+  for (int p : order) {
+    const RestPose& pose = s.catalog.poses[p];
+    const PoseTally& t = s.tally.poses[p];
+    if (t.count == 0 && pose.quasi_static_probability < 1e-4) continue;
+    const auto ci = wilson_interval(t.count, n);
+    std::snprintf(line, sizeof line,
+                  "  %4d  %5d  %7llu  %11.5f  [%.5f, %.5f]  %12.5f  %10.5g  [%.4f, %.4f, %.4f]\n", p,
+                  pose.face, static_cast<unsigned long long>(t.count),
+                  n ? static_cast<double>(t.count) / static_cast<double>(n) : 0.0, ci[0], ci[1],
+                  pose.quasi_static_probability, pose.com_height, pose.down_normal_body.x(),
+                  pose.down_normal_body.y(), pose.down_normal_body.z());
+    out += line;
+    ++shown;
+  }
+  if (shown < static_cast<int>(order.size())) {
+    std::snprintf(line, sizeof line,
+                  "  (%d rarer poses with no drops and quasi-static probability < 1e-4: see --json)\n",
+                  static_cast<int>(order.size()) - shown);
+    out += line;
+  }
+  std::snprintf(line, sizeof line, "status     rest %llu, max_time %llu, max_steps %llu",
+                static_cast<unsigned long long>(s.tally.status_counts[1]),
+                static_cast<unsigned long long>(s.tally.status_counts[2]),
+                static_cast<unsigned long long>(s.tally.status_counts[3]));
+  out += line;
+  if (s.tally.method == PoseMethod::dynamic) {
+    std::snprintf(line, sizeof line, " (%llu decided early)",
+                  static_cast<unsigned long long>(s.tally.decided_early));
+    out += line;
+  }
+  std::snprintf(line, sizeof line, "\ntime       %.3f s, %.1f drops/s on %d threads\n", s.tally.seconds,
+                s.tally.seconds > 0 ? static_cast<double>(n) / s.tally.seconds : 0.0, s.threads);
+  out += line;
+  return out;
+}
+
+}  // namespace repose

@@ -1,0 +1,139 @@
+// Batches of drops: determinism across threads and splits, merging, early decision, Wilson intervals.
+#include "repose/poses/ensemble.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "repose/error.hpp"
+#include "repose/poses/landscape.hpp"
+#include "repose/poses/rest_poses.hpp"
+
+namespace {
+
+using namespace repose;
+
+struct Study {
+  Particle particle;
+  RestLandscape landscape;
+  RestPoseCatalog catalog;
+  explicit Study(const std::string& spec, double persistence = 0)
+      : particle(load_particle(spec, 1.0)),
+        landscape(compute_rest_landscape(particle)),
+        catalog(catalog_rest_poses(particle, landscape, persistence * particle.length)) {}
+  EnsembleTally run(DropRange drops, int threads, PoseMethod method = PoseMethod::dynamic,
+                    bool decide_early = true) const {
+    EnsembleOptions o;
+    o.seed = 42;
+    o.drops = drops;
+    o.threads = threads;
+    o.method = method;
+    o.decide_early = decide_early;
+    o.params.damping = 0.05 * particle.mass.mass * std::sqrt(o.params.gravity * std::pow(particle.length, 3));
+    return run_ensemble(particle, landscape, catalog, o);
+  }
+};
+
+// Everything but the wall-clock time, bit for bit.
+void expect_same_tally(const EnsembleTally& a, const EnsembleTally& b) {
+  EXPECT_EQ(a.seed, b.seed);
+  EXPECT_EQ(a.method, b.method);
+  ASSERT_EQ(a.ranges.size(), b.ranges.size());
+  for (std::size_t r = 0; r < a.ranges.size(); ++r) {
+    EXPECT_EQ(a.ranges[r].begin, b.ranges[r].begin);
+    EXPECT_EQ(a.ranges[r].end, b.ranges[r].end);
+  }
+  EXPECT_EQ(a.status_counts, b.status_counts);
+  EXPECT_EQ(a.decided_early, b.decided_early);
+  EXPECT_EQ(a.steps, b.steps);
+  ASSERT_EQ(a.poses.size(), b.poses.size());
+  for (std::size_t p = 0; p < a.poses.size(); ++p) {
+    EXPECT_EQ(a.poses[p].count, b.poses[p].count) << "pose " << p;
+    EXPECT_EQ(a.poses[p].first_drop, b.poses[p].first_drop) << "pose " << p;
+    EXPECT_EQ(a.poses[p].orientation.coeffs(), b.poses[p].orientation.coeffs()) << "pose " << p;
+  }
+}
+
+TEST(Ensemble, OneAndTwoThreadsGiveIdenticalTallies) {
+  const Study s("irregular:seed=3");
+  expect_same_tally(s.run({0, 300}, 1), s.run({0, 300}, 2));
+  expect_same_tally(s.run({0, 2000}, 1, PoseMethod::quasi_static),
+                    s.run({0, 2000}, 2, PoseMethod::quasi_static));
+}
+
+TEST(Ensemble, SplitRunsMergeIntoTheWholeRun) {
+  const Study s("box:x=1,y=2,z=3");
+  const EnsembleTally whole = s.run({0, 400}, 2);
+  const EnsembleTally merged = merge_tallies(s.run({200, 400}, 1), s.run({0, 200}, 2));
+  expect_same_tally(whole, merged);
+  EXPECT_EQ(merged.drops(), 400u);
+  std::uint64_t counted = 0;
+  for (const PoseTally& p : whole.poses) counted += p.count;
+  EXPECT_EQ(counted + whole.status_counts[2] + whole.status_counts[3], 400u);
+}
+
+TEST(Ensemble, MergeRejectsOverlapsAndMismatches) {
+  const Study s("box:x=1,y=1,z=1");
+  const EnsembleTally a = s.run({0, 20}, 1), b = s.run({10, 30}, 1);
+  EXPECT_THROW(merge_tallies(a, b), Error);
+  EnsembleTally other_seed = s.run({20, 30}, 1);
+  other_seed.seed = 43;
+  EXPECT_THROW(merge_tallies(a, other_seed), Error);
+  EXPECT_THROW(merge_tallies(a, s.run({20, 30}, 1, PoseMethod::quasi_static)), Error);
+}
+
+// Stopping a drop once its energy is below the barrier of the pose it rolls into must not change where it
+// rests: the engine never gains energy (tests/sim), so the particle cannot climb out. Checked drop by drop
+// through the tallies of single-drop batches.
+TEST(Ensemble, EarlyDecisionNeverChangesThePose) {
+  for (const char* spec : {"irregular:seed=1", "box:x=1,y=2,z=3", "cylinder:r=0.5,h=0.6,n=32"}) {
+    const Study s(spec);
+    for (std::uint64_t i = 0; i < 60; ++i) {
+      const EnsembleTally early = s.run({i, i + 1}, 1, PoseMethod::dynamic, true);
+      const EnsembleTally full = s.run({i, i + 1}, 1, PoseMethod::dynamic, false);
+      for (std::size_t p = 0; p < early.poses.size(); ++p)
+        ASSERT_EQ(early.poses[p].count, full.poses[p].count) << spec << " drop " << i << " pose " << p;
+      EXPECT_LE(early.steps, full.steps);
+    }
+  }
+}
+
+TEST(Ensemble, SmoothParticleEarlyDecisionMatchesFullSettle) {
+  const Study s("ellipsoid:a=0.625,b=0.5,c=0.285,n=6", 0.01);
+  ASSERT_EQ(s.catalog.poses.size(), 2u);  // the two ends of the shortest axis
+  const EnsembleTally early = s.run({0, 12}, 2, PoseMethod::dynamic, true);
+  const EnsembleTally full = s.run({0, 12}, 2, PoseMethod::dynamic, false);
+  for (std::size_t p = 0; p < 2; ++p) EXPECT_EQ(early.poses[p].count, full.poses[p].count);
+  EXPECT_EQ(early.status_counts[1], 12u);
+  EXPECT_LT(early.steps * 4, full.steps) << "early decision should save most of the rocking";
+}
+
+// Published values (Newcombe, Stat. Med. 17:857, 1998, Table II): 81/263 → [0.2553, 0.3662] and 0/10 →
+// [0, 0.2775] (4 decimals).
+TEST(Ensemble, WilsonIntervalMatchesPublishedValues) {
+  const auto a = wilson_interval(81, 263);
+  EXPECT_NEAR(a[0], 0.2553, 5e-5);
+  EXPECT_NEAR(a[1], 0.3662, 5e-5);
+  const auto b = wilson_interval(0, 10);
+  EXPECT_EQ(b[0], 0.0);
+  EXPECT_NEAR(b[1], 0.2775, 5e-5);
+  const auto c = wilson_interval(10, 10);
+  EXPECT_NEAR(c[0], 1 - 0.2775, 5e-5);
+  EXPECT_EQ(c[1], 1.0);
+}
+
+TEST(Ensemble, RejectsBadOptions) {
+  const Study s("box:x=1,y=1,z=1");
+  EnsembleOptions o;
+  o.drops = {5, 3};
+  EXPECT_THROW(run_ensemble(s.particle, s.landscape, s.catalog, o), Error);
+  o.drops = {0, 3};
+  o.threads = -1;
+  EXPECT_THROW(run_ensemble(s.particle, s.landscape, s.catalog, o), Error);
+  o.threads = 1;
+  o.params.dt = -1;
+  EXPECT_THROW(run_ensemble(s.particle, s.landscape, s.catalog, o), Error);
+  EXPECT_THROW(parse_pose_method("static"), Error);
+}
+
+}  // namespace
