@@ -20,14 +20,6 @@ namespace {
 // Drops per task: large enough to amortise scheduling, small enough to balance 2 to 64 cores.
 constexpr std::uint64_t kGrain = 64;
 
-struct DropOutcome {
-  int pose = -1;  // −1 if the run did not rest
-  Status status = Status::running;
-  bool decided_early = false;
-  long steps = 0;
-  Quat orientation = Quat::Identity();  // final orientation; meaningful only if !decided_early
-};
-
 const Vec3 kDown(0, 0, -1);
 
 // The orientation closest to `q` that puts `face` flush on the wall: tilt `q` by the smallest rotation taking
@@ -52,8 +44,11 @@ DropOutcome run_dynamic_drop(const Particle& particle, const RestLandscape& land
   const double margin = 1e-6 * particle.length;
   const double highest_barrier = largest_finite_or_inf(catalog);
   DropOutcome out;
-  while (settler.step()) {
-    if (!decide_early) continue;
+  // The check rolls the landscape from the current direction, which costs about a step; every kCheckEvery
+  // steps it costs little and delays the decision by at most that many steps.
+  constexpr long kCheckEvery = 8;
+  for (long calls = 1; settler.step(); ++calls) {
+    if (!decide_early || calls % kCheckEvery != 0) continue;
     const Sample sample = settler.sample();
     // The centre of mass is never below h(down) (no vertex below the wall), so this level bounds how high
     // on the COM-height landscape the particle can still climb.
@@ -131,6 +126,15 @@ struct PartialTally {
 
 }  // namespace
 
+DropOutcome simulate_drop(const Particle& particle, const RestLandscape& landscape,
+                          const RestPoseCatalog& catalog, const EnsembleOptions& options,
+                          std::uint64_t index) {
+  const Quat start = drop_orientation(options.seed, index);
+  return options.method == PoseMethod::dynamic
+             ? run_dynamic_drop(particle, landscape, catalog, options.params, start, options.decide_early)
+             : run_quasi_static_drop(particle, landscape, catalog, start);
+}
+
 const char* to_string(PoseMethod method) {
   return method == PoseMethod::dynamic ? "dynamic" : "quasi-static";
 }
@@ -160,10 +164,7 @@ EnsembleTally run_ensemble(const Particle& particle, const RestLandscape& landsc
   PartialTally total(catalog.poses.size());
   std::mutex total_mutex;
   const auto run_drop = [&](std::uint64_t i) {
-    const Quat start = drop_orientation(options.seed, i);
-    return options.method == PoseMethod::dynamic
-               ? run_dynamic_drop(particle, landscape, catalog, options.params, start, options.decide_early)
-               : run_quasi_static_drop(particle, landscape, catalog, start);
+    return simulate_drop(particle, landscape, catalog, options, i);
   };
   const int threads = options.threads > 0 ? options.threads : tbb::task_arena::automatic;
   tbb::task_arena arena(threads);

@@ -70,6 +70,21 @@ struct EnsembleTally {
   std::uint64_t drops() const;  ///< total number of drops counted
 };
 
+/// How one drop ended.
+struct DropOutcome {
+  int pose = -1;  ///< catalogue index of the rest pose; −1 if the run did not rest
+  Status status = Status::running;
+  bool decided_early = false;           ///< stopped once the pose was decided (EnsembleOptions::decide_early)
+  long steps = 0;                       ///< engine steps taken
+  Quat orientation = Quat::Identity();  ///< final orientation (body → world); not meaningful if decided_early
+};
+
+/// Drop `index` alone (options.seed, method, params and decide_early apply; options.drops is ignored). For a
+/// program that wants the pose of particular drops, and for benchmarks.
+DropOutcome simulate_drop(const Particle& particle, const RestLandscape& landscape,
+                          const RestPoseCatalog& catalog, const EnsembleOptions& options,
+                          std::uint64_t index);
+
 /// Runs drops [options.drops.begin, options.drops.end). Throws repose::Error for invalid options.
 EnsembleTally run_ensemble(const Particle& particle, const RestLandscape& landscape,
                            const RestPoseCatalog& catalog, const EnsembleOptions& options);
