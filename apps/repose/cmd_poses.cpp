@@ -97,6 +97,18 @@ class ProgressBar {
   std::thread thread_;
 };
 
+// Checks the text of an unsigned option before CLI11 converts it, which would wrap "-5" into a huge count.
+CLI::Validator whole_number(std::uint64_t min) {
+  return CLI::Validator(
+      [min](std::string& text) -> std::string {
+        const bool digits =
+            !text.empty() && text.size() <= 19 && text.find_first_not_of("0123456789") == std::string::npos;
+        if (digits && std::stoull(text) >= min) return {};
+        return "must be a whole number >= " + std::to_string(min) + ", got '" + text + "'";
+      },
+      "INT >= " + std::to_string(min));
+}
+
 DropRange parse_range(const std::string& text) {
   const auto colon = text.find(':');
   const auto bad = [&] {
@@ -200,11 +212,12 @@ Command add_poses_command(CLI::App& app) {
       "poses",
       "Rest-pose statistics: drop the particle from uniformly random orientations, count where it rests");
   sub->add_option("particle", o->source, "Mesh file (STL, OBJ, PLY, OFF) or shape spec")->required();
-  sub->add_option("-n,--drops", o->drops, "Number of drops (drop indices 0 .. N-1)");
+  sub->add_option("-n,--drops", o->drops, "Number of drops (drop indices 0 .. N-1)")->check(whole_number(1));
   sub->add_option(
       "--range", o->range,
       "Run only drops BEGIN .. END-1 (for splitting a study; merge the results with repose merge)");
-  sub->add_option("--seed", o->seed, "Seed: drop i's orientation depends only on (seed, i) (default 1)");
+  sub->add_option("--seed", o->seed, "Seed: drop i's orientation depends only on (seed, i) (default 1)")
+      ->check(whole_number(0));
   sub->add_option("--threads", o->threads, "Worker threads (default 0: all cores)");
   sub->add_option("--method", o->method,
                   "dynamic (the settling engine) or quasi-static (steepest descent of the COM height)")

@@ -98,7 +98,7 @@ TEST_F(PosesCli, TableShowsEveryPoseAndTheRate) {
 
 TEST_F(PosesCli, BadInput) {
   expect_bad_input(run_cli("poses box:x=1,y=1,z=1"), {"-n"});
-  expect_bad_input(run_cli("poses box:x=1,y=1,z=1 -n 0"), {"-n"});
+  expect_bad_input(run_cli("poses box:x=1,y=1,z=1 -n 0"), {"--drops", "0"});
   expect_bad_input(run_cli("poses box:x=1,y=1,z=1 --range 5:3"), {"--range", "5:3"});
   expect_bad_input(run_cli("poses box:x=1,y=1,z=1 --range 5"), {"--range"});
   expect_bad_input(run_cli("poses box:x=1,y=1,z=1 -n 5 --range 0:5"), {"--range"});
@@ -109,6 +109,20 @@ TEST_F(PosesCli, BadInput) {
   expect_bad_input(run_cli("poses box:x=1,y=1,z=1 -n 5 --dt 0 --dt -1"), {"dt"});
   expect_bad_input(run_cli("poses box:x=1,y=1,z=1 -n 5 --persistence -0.1"), {"--persistence"});
   expect_bad_input(run_cli("poses box:x=1,y=1,z=1 -n 5 --density 0"), {"--density"});
+  expect_bad_input(run_cli("poses box:x=1,y=1,z=1 -n 5 --density nan"), {"--density"});
+  expect_bad_input(run_cli("poses box:x=1,y=1,z=1 -n 5 --dt nan"), {"dt", "nan"});
+  expect_bad_input(run_cli("poses box:x=1,y=1,z=1 -n 5 --dt abc"), {"--dt", "abc"});
+  expect_bad_input(run_cli("poses box:x=1,y=1,z=1 -n 5 --seed -3"), {"--seed", "-3"});
+  expect_bad_input(run_cli("poses box:x=1,y=1,z=1 -n -5"), {"--drops", "-5"});
+  expect_bad_input(run_cli("poses box:x=1,y=1,z=1 -n 5 --contact-threshold 0"), {"contact-threshold"});
+  expect_bad_input(run_cli("poses box:x=1,y=1,z=1 -n 5 --line-threshold -1"), {"line-threshold"});
+  expect_bad_input(run_cli("poses box:x=1,y=1,z=1 -n 5 --drop-height -1"), {"drop-height"});
+  expect_bad_input(run_cli("poses box:x=1,y=1,z=1 -n 5 --max-steps 0"), {"max-steps"});
+  expect_bad_input(run_cli("poses box:x=1,y=1,z=1 -n 5 --units imperial"), {"--units", "imperial"});
+  expect_bad_input(run_cli("poses box:x=1,y=1,z=1 -n 5 --smooth maybe"), {"--smooth", "maybe"});
+  expect_bad_input(run_cli("poses box:x=1,y=1,z=1 -n 5 --bogus"), {"--bogus"});
+  expect_bad_input(run_cli("poses -n 5"), {"particle"});
+  expect_bad_input(run_cli("poses 'box:x=1,y=-1,z=1' -n 5"), {"box"});
   expect_bad_input(run_cli("poses nosuchshape:x=1 -n 5"), {"nosuchshape"});
   expect_bad_input(run_cli("poses " + (dir_ / "missing.stl").string() + " -n 5"), {"missing.stl"});
   // An output directory that cannot be created: nothing is written anywhere.
