@@ -29,7 +29,7 @@ Quat flush_orientation(const Particle& particle, int face, const Quat& q) {
   return (Quat::FromTwoVectors(normal_world, kDown) * q).normalized();
 }
 
-double largest_finite_or_inf(const RestPoseCatalog& catalog) {
+double highest_barrier_of(const RestPoseCatalog& catalog) {
   double m = -std::numeric_limits<double>::infinity();
   for (const RestPose& pose : catalog.poses) m = std::max(m, pose.barrier);
   return m;
@@ -42,7 +42,7 @@ DropOutcome run_dynamic_drop(const Particle& particle, const RestLandscape& land
   const double weight = particle.mass.mass * params.gravity;
   // Round-off margin on the energy test: the engine's energy drift is < 1e-11·m·g·L (tests/sim).
   const double margin = 1e-6 * particle.length;
-  const double highest_barrier = largest_finite_or_inf(catalog);
+  const double highest_barrier = highest_barrier_of(catalog);
   DropOutcome out;
   // The check rolls the landscape from the current direction, which costs about a step; every kCheckEvery
   // steps it costs little and delays the decision by at most that many steps.
