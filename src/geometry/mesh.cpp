@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <unordered_map>
@@ -18,6 +19,9 @@ namespace {
 constexpr double kWeldTolerance = 1e-10;
 constexpr double kAreaTolerance = 1e-14;
 constexpr double kVolumeTolerance = 1e-12;
+// Bounding-box diagonals D accepted: far beyond any particle in any unit system.
+constexpr double kMinDiagonal = 1e-50;
+constexpr double kMaxDiagonal = 1e50;
 
 std::string count_of(std::int64_t n, const std::string& singular, const std::string& plural) {
   return std::to_string(n) + " " + (n == 1 ? singular : plural);
@@ -196,6 +200,13 @@ MeshReport validate_mesh(TriangleMesh& mesh, const std::string& name) {
   const double diag = box.size().norm();
   // Also guards the weld grid below, whose cell size is proportional to the diagonal.
   if (!(diag > 0.0)) throw Error(name + ": zero volume (all vertices coincide)");
+  // Outside this range the tolerances underflow or the volume and inertia (∝ D⁵) overflow; found by
+  // fuzz_shape_spec ("box:x=1e300,y=1e300,z=1e300" made the weld grid's cell index undefined).
+  if (!(diag >= kMinDiagonal && diag <= kMaxDiagonal)) {
+    char shown[32];
+    std::snprintf(shown, sizeof shown, "%.3g", diag);
+    throw Error(name + ": size out of range (bounding-box diagonal " + shown + "; must be in [1e-50, 1e50])");
+  }
 
   // Weld, then drop triangles that collapsed or have (numerically) no area.
   const std::vector<std::int32_t> rep = weld_map(mesh.vertices, used, box.min, kWeldTolerance * diag);

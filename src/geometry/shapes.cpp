@@ -22,6 +22,7 @@
 
 #include "repose/error.hpp"
 #include "repose/geometry/mass.hpp"
+#include "repose/geometry/mesh.hpp"
 
 namespace repose {
 namespace {
@@ -380,7 +381,10 @@ bool is_shape_spec(const std::string& text) {
   return is_identifier(std::string_view(text).substr(0, colon));
 }
 
-TriangleMesh make_shape(const std::string& spec) {
+namespace {
+
+// The mesh of a spec, not yet checked as a solid.
+TriangleMesh build_shape(const std::string& spec) {
   const auto colon = spec.find(':');
   if (colon == std::string::npos) {
     throw Error("shape '" + spec +
@@ -429,6 +433,22 @@ TriangleMesh make_shape(const std::string& spec) {
     return make_irregular(seed, size, n);
   }
   params.fail("unknown shape '" + name + "'");  // unreachable: the name was checked above
+}
+
+}  // namespace
+
+TriangleMesh make_shape(const std::string& spec) {
+  TriangleMesh mesh = build_shape(spec);
+  // Every parameter may be valid alone while together they give no valid solid: extreme sizes or aspect
+  // ratios ("box:x=1e20,y=1e-20,z=1") lose faces to the area tolerance or overflow the volume. Found by
+  // fuzz_shape_spec; rejected here so that a spec that parses always gives a valid mesh.
+  TriangleMesh check = mesh;
+  try {
+    validate_mesh(check, "mesh");
+  } catch (const Error& e) {
+    throw Error("shape '" + spec + "': sizes out of range (" + e.what() + ")");
+  }
+  return mesh;
 }
 
 }  // namespace repose

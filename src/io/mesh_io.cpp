@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <filesystem>
@@ -81,6 +82,19 @@ void for_each_line(std::string_view text, std::size_t start, std::int64_t first_
 
 std::string at_line(std::int64_t number) { return "line " + std::to_string(number) + ": "; }
 
+// assimp splits text formats at spaces, tabs and line ends only, and stops at a NUL byte, so a file with
+// other control characters reads differently in our scan and in assimp; assimp then throws on the
+// mismatch and leaks what it has built (found by fuzz_mesh_obj: "v\0 1 1 0"). Mesh files never need them.
+void check_control_characters(const std::string& path, std::string_view text, std::int64_t first_line = 1) {
+  const auto control = [](char c) {
+    return (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\r' && c != '\n') || c == 0x7f;
+  };
+  const auto at = std::find_if(text.begin(), text.end(), control);
+  if (at == text.end()) return;
+  const auto line = first_line + std::count(text.begin(), at, '\n');
+  fail(path, at_line(line) + "control character (byte " + str(static_cast<unsigned char>(*at)) + ")");
+}
+
 bool parse_int(std::string_view s, std::int64_t& out) {
   const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
   return ec == std::errc() && ptr == s.data() + s.size() && !s.empty();
@@ -119,35 +133,85 @@ bool looks_like_ascii_stl(std::string_view data) {
          data.find('\0') == std::string_view::npos;
 }
 
-// assimp silently ignores a facet's vertices beyond the third.
-void check_ascii_stl(const std::string& path, std::string_view data) {
-  std::int64_t facet = 0, vertices = 0;
-  std::size_t pos = 0;
-  for (std::string_view token = next_token(data, pos); !token.empty(); token = next_token(data, pos)) {
-    if (token == "facet") {
-      ++facet;
-      vertices = 0;
-    } else if (token == "vertex") {
-      ++vertices;
-    } else if (token == "endfacet" && vertices != 3) {
-      fail(path, "facet " + str(facet) + " has " + str(vertices) + " vertices (expected 3)");
-    }
-  }
+// A binary file's size is 84 + 50 × the facet count in its header.
+bool is_binary_stl_size(std::string_view data) {
+  return data.size() >= 84 && 84 + 50 * std::uint64_t{read_le32(data.data() + 80)} == data.size();
 }
 
-// Returns how many leading bytes assimp should parse (binary STL may carry trailing bytes).
-std::size_t check_stl(const std::string& path, std::string_view data) {
+bool is_ascii_stl(std::string_view data) { return !is_binary_stl_size(data) && looks_like_ascii_stl(data); }
+
+std::string shown(std::string_view token) {
+  if (token.empty()) return "end of file";
+  std::string out = "'";
+  out.append(token.substr(0, 40));
+  if (token.size() > 40) out += "...";
+  out += '\'';
+  return out;
+}
+
+// ASCII STL is read here, not by assimp: assimp leaks the meshes it has built whenever it throws on a
+// malformed ASCII file (a word where a number should be, a facet cut short; found by fuzz_mesh_stl), and
+// its lenient tokenizer would have to be mirrored exactly to rule that out. The grammar: "solid [name]",
+// facets "facet normal nx ny nz / outer loop / vertex x y z (three times) / endloop / endfacet", then
+// "endsolid [name]"; several solids may follow each other, and the last endsolid may be missing, as assimp
+// allows. Coordinates are rounded to float, as binary STL and assimp store them.
+TriangleMesh read_ascii_stl(const std::string& path, std::string_view data) {
+  TriangleMesh mesh;
+  std::size_t pos = 0;
+  const auto skip_line = [&] { pos = std::min(data.find('\n', pos), data.size()); };
+  const auto expect = [&](std::string_view word, const std::string& where) {
+    const std::string_view token = next_token(data, pos);
+    if (token != word) fail(path, where + "expected '" + std::string(word) + "', found " + shown(token));
+  };
+  const auto number = [&](const std::string& where) {
+    const std::string_view token = next_token(data, pos);
+    if (!is_number(token)) fail(path, where + "expected a number, found " + shown(token));
+    return static_cast<double>(std::strtof(std::string(token).c_str(), nullptr));
+  };
+  std::int64_t facet = 0;
+  std::string_view token = next_token(data, pos);
+  while (token.starts_with("solid")) {  // the name may follow without a space, as assimp reads it
+    skip_line();
+    for (token = next_token(data, pos); token == "facet"; token = next_token(data, pos)) {
+      ++facet;
+      const std::string where = "facet " + str(facet) + ": ";
+      expect("normal", where);
+      for (int k = 0; k < 3; ++k) number(where);
+      expect("outer", where);
+      expect("loop", where);
+      std::int64_t vertices = 0;
+      for (token = next_token(data, pos); token == "vertex"; token = next_token(data, pos)) {
+        const double x = number(where);
+        const double y = number(where);
+        const double z = number(where);
+        if (++vertices <= 3) mesh.vertices.emplace_back(x, y, z);
+      }
+      if (vertices != 3) {
+        fail(path, "facet " + str(facet) + " has " + str(vertices) + " vertices (expected 3)");
+      }
+      if (token != "endloop") fail(path, where + "expected 'endloop', found " + shown(token));
+      expect("endfacet", where);
+      if (mesh.vertices.size() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
+        fail(path, "too many vertices (more than " + str(std::numeric_limits<std::int32_t>::max()) + ")");
+      }
+      const auto first = static_cast<std::int32_t>(mesh.vertices.size() - 3);
+      mesh.triangles.push_back({first, first + 1, first + 2});
+    }
+    if (token.empty()) break;
+    if (token != "endsolid") fail(path, "expected 'facet' or 'endsolid', found " + shown(token));
+    skip_line();
+    token = next_token(data, pos);
+  }
+  if (!token.empty()) fail(path, "expected 'solid', found " + shown(token));
+  if (mesh.triangles.empty()) fail(path, "no triangles");
+  return mesh;
+}
+
+// Binary STL: returns how many leading bytes assimp should parse (the file may carry trailing bytes).
+std::size_t check_binary_stl(const std::string& path, std::string_view data) {
   const std::uint64_t size = data.size();
   const std::uint64_t count = size >= 84 ? read_le32(data.data() + 80) : 0;
   const std::uint64_t needed = 84 + 50 * count;  // 64-bit: 50 * 2^31 must not wrap to 0
-  if (size >= 84 && needed == size) {
-    if (count == 0) fail(path, "no triangles");
-    return size;
-  }
-  if (looks_like_ascii_stl(data)) {
-    check_ascii_stl(path, data);
-    return size;
-  }
   if (size < 84) {
     fail(path, "truncated binary STL: file has " + str(size) + " bytes, less than the 84-byte header");
   }
@@ -174,12 +238,19 @@ bool is_obj_number(std::string_view s) {
 }
 
 void check_obj(const std::string& path, std::string_view data) {
+  check_control_characters(path, data);
   // Pass 1: vertex lines. Indices may point forward, so faces are checked against the final count.
   std::int64_t total_vertices = 0;
   for_each_line(data, 0, 1, [&](std::int64_t line_no, std::string_view line, std::size_t) {
     const auto tokens = split_tokens(line);
     if (tokens.empty()) return true;
     const std::string key(tokens.front());
+    // assimp keys on the first character, so it reads "vv 0 0 0" as a vertex and "f6 8 7" as a face where
+    // we would skip both; it then threw on the shifted indices and leaked (found by fuzz_mesh_obj).
+    if (std::string_view("vflp").find(key.front()) != std::string_view::npos && key != "v" && key != "vt" &&
+        key != "vn" && key != "vp" && key != "f" && key != "l" && key != "p") {
+      fail(path, at_line(line_no) + "unknown keyword '" + std::string(tokens.front().substr(0, 40)) + "'");
+    }
     if (key != "v" && key != "f" && key != "l" && key != "p") return true;
     // Forms assimp would skip or misread without an error.
     if (is_space(line.front())) fail(path, at_line(line_no) + "indented '" + key + "' line");
@@ -246,6 +317,7 @@ bool is_off_keyword(std::string_view s) {
 }
 
 void check_off(const std::string& path, std::string_view data) {
+  check_control_characters(path, data);
   // Header: keyword, then the vertex, face and edge counts, which must end their line. The keyword is
   // optional in the format, but without it assimp takes a leading '4' of the vertex count for a flag.
   std::vector<std::uint64_t> counts;
@@ -507,9 +579,17 @@ void check_ply(const std::string& path, std::string_view data) {
     ++line_no;
     std::size_t end = data.find('\n', pos);
     if (end == std::string_view::npos) end = data.size();
-    const auto tokens = split_tokens(data.substr(pos, end - pos));
+    const std::string_view text = data.substr(pos, end - pos);
+    const auto tokens = split_tokens(text);
     pos = std::min(end + 1, data.size());
     const std::string where = "cannot parse: PLY header line " + str(line_no) + ": ";
+    // assimp splits header words only at spaces, tabs and line ends: a vertical tab or form feed after
+    // "end_header" moved its start of the data away from ours, and it read out of bounds (found by
+    // fuzz_mesh_ply).
+    const auto control = [](char c) {
+      return (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\r') || c == 0x7f;
+    };
+    if (std::any_of(text.begin(), text.end(), control)) fail(path, where + "control character");
     if (line_no == 1) {
       if (tokens.size() != 1 || (tokens[0] != "ply" && tokens[0] != "PLY")) {
         fail(path, "cannot parse: not a PLY file (no 'ply' line)");
@@ -520,8 +600,14 @@ void check_ply(const std::string& path, std::string_view data) {
     const std::string_view key = tokens[0];
     if (key == "comment" || key == "obj_info") continue;
     if (key == "end_header") {
+      if (tokens.size() != 1) {
+        fail(path, where + "unexpected '" + std::string(tokens[1]) + "' after end_header");
+      }
       ended = true;
     } else if (key == "format" && tokens.size() >= 2) {
+      // assimp reads the first format line and we would check the last; it then throws on the mismatch
+      // and leaks the mesh it has built (found by fuzz_mesh_ply).
+      if (have_format) fail(path, where + "second format line");
       if (tokens[1] == "ascii") {
         format = PlyFormat::kAscii;
       } else if (tokens[1] == "binary_little_endian") {
@@ -572,6 +658,7 @@ void check_ply(const std::string& path, std::string_view data) {
   }
 
   if (format == PlyFormat::kAscii) {
+    check_control_characters(path, data.substr(pos), line_no + 1);
     walk_ascii_ply(path, data, pos, line_no + 1, elements);
   } else {
     walk_binary_ply(path, data, pos, elements, format == PlyFormat::kBinaryBig);
@@ -726,17 +813,15 @@ void append_float(std::string& out, double v) {
   append_le32(out, bits);
 }
 
-}  // namespace
-
-TriangleMesh read_mesh(const std::string& path) {
-  Format format = Format::kStl;
-  const std::string data = read_file(path, format);
+// Checks and parses the bytes of a mesh file; `path` names it in errors.
+TriangleMesh parse_mesh(const std::string& path, const std::string& data, Format format) {
   if (data.empty()) fail(path, "empty file");
 
   std::size_t length = data.size();
   switch (format) {
     case Format::kStl:
-      length = check_stl(path, data);
+      if (is_ascii_stl(data)) return read_ascii_stl(path, data);
+      length = check_binary_stl(path, data);
       break;
     case Format::kObj:
       check_obj(path, data);
@@ -769,6 +854,22 @@ TriangleMesh read_mesh(const std::string& path) {
   }
   if (scene == nullptr) fail(path, "cannot parse: " + one_line(importer.GetErrorString(), path, hint));
   return merge_triangles(path, *scene);
+}
+
+}  // namespace
+
+TriangleMesh read_mesh(const std::string& path) {
+  Format format = Format::kStl;
+  const std::string data = read_file(path, format);
+  return parse_mesh(path, data, format);
+}
+
+TriangleMesh read_mesh_from_memory(const std::string& bytes, const std::string& name) {
+  const Format format = format_of(name);
+  if (bytes.size() > kMaxFileSize) {
+    fail(name, "file too large (" + str(bytes.size()) + " bytes; at most " + str(kMaxFileSize) + ")");
+  }
+  return parse_mesh(name, bytes, format);
 }
 
 void write_stl(const TriangleMesh& mesh, const std::string& path) {

@@ -35,7 +35,8 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
   json j;
   try {
     j = json::parse(json_text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // Not only parse_error: a number too large for a double throws out_of_range (found by fuzz_scenario).
     throw Error(origin + ": invalid JSON: " + e.what());
   }
   if (!j.is_object()) throw Error(origin + ": a scenario must be a JSON object");

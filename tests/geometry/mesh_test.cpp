@@ -93,6 +93,17 @@ TEST(MeshValidate, NonFiniteCoordinateIsRejected) {
   EXPECT_EQ(validation_error(m), "part.stl: vertex 5 has a non-finite coordinate");
 }
 
+// Found by fuzz_shape_spec: a 1e300 cube overflowed the bounding-box diagonal to inf, and the weld grid's
+// cell index became undefined behaviour. Sizes whose mass properties would overflow are rejected.
+TEST(MeshValidate, SizeOutOfRangeIsRejected) {
+  EXPECT_EQ(validation_error(transformed(unit_cube(), 1e300, Vec3::Zero())),
+            "part.stl: size out of range (bounding-box diagonal inf; must be in [1e-50, 1e50])");
+  EXPECT_EQ(validation_error(transformed(unit_cube(), 1e-60, Vec3::Zero())),
+            "part.stl: size out of range (bounding-box diagonal 1.73e-60; must be in [1e-50, 1e50])");
+  EXPECT_EQ(validation_error(transformed(unit_cube(), 1e40, Vec3::Zero())), "");
+  EXPECT_EQ(validation_error(transformed(unit_cube(), 1e-40, Vec3::Zero())), "");
+}
+
 TEST(MeshValidate, WeldsDuplicateVertices) {
   TriangleMesh m = soup(unit_cube());
   const MeshReport r = validate_mesh(m, "soup");

@@ -264,6 +264,11 @@ TEST(Shapes, SpecErrors) {
       {"box:", "missing parameter 'x'"},
       {"tetrahedron:a=1", "unknown parameter 'a'"},
       {"box", "shape 'box': expected name:key=value"},
+      // Found by fuzz_shape_spec: each size is valid alone, but together they give no valid solid.
+      {"box: x = 1e73 , y=3.5e2,z=7", "sizes out of range (mesh: size out of range"},
+      {"box:x=1e20,y=1e-20,z=1", "sizes out of range (mesh: "},
+      {"box:x=1e300,y=1e300,z=1e300", "sizes out of range (mesh: size out of range"},
+      {"tetrahedron:edge=1e-300", "sizes out of range (mesh: zero volume"},
   };
   for (const auto& [spec, expected] : cases) {
     try {

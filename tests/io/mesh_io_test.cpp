@@ -256,6 +256,86 @@ TEST_F(MeshIoTest, AsciiStlFacetWithFourVertices) {
               HasSubstr("four.stl: facet 1 has 4 vertices (expected 3)"));
 }
 
+// Found by fuzz_mesh_stl: assimp leaked its partly built mesh when it threw on malformed ASCII STL (here
+// binary junk, then a word where a number should be); ASCII STL is now read without assimp, and the
+// sanitizer build checks that nothing leaks.
+TEST(MeshIo, AsciiStlJunk) {
+  EXPECT_THAT(data_error("fuzz/ascii_stl_leak_bad_number.stl"),
+              HasSubstr("ascii_stl_leak_bad_number.stl: expected 'facet' or 'endsolid', found '"));
+}
+
+TEST_F(MeshIoTest, AsciiStlMalformedFacets) {
+  const std::string head = "solid x\nfacet normal 0 0 1\nouter loop\n";
+  EXPECT_THAT(load_error(write("word.stl", "solid x\nfacet normal 0 be\n")),
+              HasSubstr("word.stl: facet 1: expected a number, found 'be'"));
+  EXPECT_THAT(load_error(write("short.stl", head + "vertex 0 0 0\n")),
+              HasSubstr("short.stl: facet 1 has 1 vertices (expected 3)"));
+  EXPECT_THAT(load_error(write("nonormal.stl", "solid x\nfacet\nouter loop\n")),
+              HasSubstr("nonormal.stl: facet 1: expected 'normal', found 'outer'"));
+  EXPECT_THAT(load_error(write("noend.stl", head + "vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\n")),
+              HasSubstr("noend.stl: facet 1: expected 'endfacet', found end of file"));
+  EXPECT_THAT(load_error(write("stray.stl", "solid x\nvertex 0 0 0\nendsolid x\n")),
+              HasSubstr("stray.stl: expected 'facet' or 'endsolid', found 'vertex'"));
+  EXPECT_THAT(load_error(write("empty.stl", "solid x\nendsolid x\n")), HasSubstr("empty.stl: no triangles"));
+}
+
+// Found by fuzz_mesh_ply: a header with two format lines (ascii, then binary) passed our binary check,
+// assimp parsed it as ASCII, threw, and leaked its mesh.
+TEST(MeshIo, PlyWithTwoFormatLines) {
+  EXPECT_EQ(
+      data_error("fuzz/ply_leak_two_formats.ply"),
+      data_file("fuzz/ply_leak_two_formats.ply") + ": cannot parse: PLY header line 3: second format line");
+}
+
+// Found by fuzz_mesh_ply: "end_header" followed by a vertical tab and more words on the same line; our
+// header scan and assimp disagreed on where the binary data starts, and assimp read out of bounds.
+TEST(MeshIo, PlyHeaderControlCharacters) {
+  EXPECT_EQ(data_error("fuzz/ply_segv_end_header_vtab.ply"),
+            data_file("fuzz/ply_segv_end_header_vtab.ply") +
+                ": cannot parse: PLY header line 10: control character");
+}
+
+TEST_F(MeshIoTest, PlyEndHeaderMustEndItsLine) {
+  EXPECT_THAT(load_error(write("extra.ply", "ply\nformat ascii 1.0\nelement vertex 0\nend_header x\n")),
+              HasSubstr("extra.ply: cannot parse: PLY header line 4: unexpected 'x' after end_header"));
+}
+
+// Found by fuzz_mesh_obj: "v\0 1 1 0" was no vertex line to our scan but one to assimp, which then threw
+// and leaked its mesh. Text formats reject control characters other than tab and line ends.
+TEST(MeshIo, ObjControlCharacter) {
+  EXPECT_EQ(data_error("fuzz/obj_leak_nul_byte.obj"),
+            data_file("fuzz/obj_leak_nul_byte.obj") + ": line 4: control character (byte 0)");
+}
+
+// Found by fuzz_mesh_obj: "vv 0 0 0" is a vertex to assimp but an unknown line to a whitespace tokenizer.
+TEST(MeshIo, ObjGluedKeyword) {
+  EXPECT_EQ(data_error("fuzz/obj_leak_glued_keyword.obj"),
+            data_file("fuzz/obj_leak_glued_keyword.obj") + ": line 1: unknown keyword 'vv'");
+}
+
+TEST_F(MeshIoTest, TextFormatsRejectControlCharacters) {
+  EXPECT_THAT(load_error(write("vt.obj", "v 0 0 0\nv\v1 0 0\n")),
+              HasSubstr("vt.obj: line 2: control character (byte 11)"));
+  EXPECT_THAT(load_error(write("ff.off", "OFF\n3 1 0\n0 0 0\f\n")),
+              HasSubstr("ff.off: line 3: control character (byte 12)"));
+  EXPECT_THAT(
+      load_error(write("nul.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n1" +
+                                      std::string(1, '\0') + "\n")),
+      HasSubstr("nul.ply: line 6: control character (byte 0)"));
+}
+
+TEST(MeshIo, ReadFromMemoryMatchesReadMesh) {
+  for (const char* name : {"cube_ascii.stl", "cube_binary.stl", "cube.obj", "cube_binary.ply", "cube.off"}) {
+    std::ifstream in(data_file(name), std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const TriangleMesh from_memory = read_mesh_from_memory(bytes, name);
+    const TriangleMesh from_file = read_mesh(data_file(name));
+    EXPECT_EQ(from_memory.vertices, from_file.vertices) << name;
+    EXPECT_EQ(from_memory.triangles, from_file.triangles) << name;
+  }
+  EXPECT_THROW(read_mesh_from_memory("solid x\n", "mesh.xyz"), Error);
+}
+
 // ---------------------------------------------------------------------------------------------------------
 // Files that parse but are not valid solids: validate_mesh names the file and the problem.
 
