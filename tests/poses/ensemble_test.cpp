@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "repose/error.hpp"
@@ -12,6 +13,15 @@
 namespace {
 
 using namespace repose;
+
+// The sanitizer build runs the engine ~200x slower: it checks the same properties on fewer drops.
+#ifdef NDEBUG
+constexpr bool kOptimised = true;
+#else
+constexpr bool kOptimised = false;
+#endif
+// n drops in the optimised build, max(2, n / 20) in debug and sanitizer builds.
+constexpr std::uint64_t drops(std::uint64_t n) { return kOptimised ? n : std::max<std::uint64_t>(2, n / 20); }
 
 struct Study {
   Particle particle;
@@ -56,20 +66,21 @@ void expect_same_tally(const EnsembleTally& a, const EnsembleTally& b) {
 
 TEST(Ensemble, OneAndTwoThreadsGiveIdenticalTallies) {
   const Study s("irregular:seed=3");
-  expect_same_tally(s.run({0, 300}, 1), s.run({0, 300}, 2));
+  expect_same_tally(s.run({0, drops(300)}, 1), s.run({0, drops(300)}, 2));
   expect_same_tally(s.run({0, 2000}, 1, PoseMethod::quasi_static),
                     s.run({0, 2000}, 2, PoseMethod::quasi_static));
 }
 
 TEST(Ensemble, SplitRunsMergeIntoTheWholeRun) {
   const Study s("box:x=1,y=2,z=3");
-  const EnsembleTally whole = s.run({0, 400}, 2);
-  const EnsembleTally merged = merge_tallies(s.run({200, 400}, 1), s.run({0, 200}, 2));
+  const std::uint64_t n = 2 * drops(200);
+  const EnsembleTally whole = s.run({0, n}, 2);
+  const EnsembleTally merged = merge_tallies(s.run({n / 2, n}, 1), s.run({0, n / 2}, 2));
   expect_same_tally(whole, merged);
-  EXPECT_EQ(merged.drops(), 400u);
+  EXPECT_EQ(merged.drops(), n);
   std::uint64_t counted = 0;
   for (const PoseTally& p : whole.poses) counted += p.count;
-  EXPECT_EQ(counted + whole.status_counts[2] + whole.status_counts[3], 400u);
+  EXPECT_EQ(counted + whole.status_counts[2] + whole.status_counts[3], n);
 }
 
 TEST(Ensemble, MergeRejectsOverlapsAndMismatches) {
@@ -88,7 +99,7 @@ TEST(Ensemble, MergeRejectsOverlapsAndMismatches) {
 TEST(Ensemble, EarlyDecisionNeverChangesThePose) {
   for (const char* spec : {"irregular:seed=1", "box:x=1,y=2,z=3", "cylinder:r=0.5,h=0.6,n=32"}) {
     const Study s(spec);
-    for (std::uint64_t i = 0; i < 60; ++i) {
+    for (std::uint64_t i = 0; i < drops(60); ++i) {
       const EnsembleTally early = s.run({i, i + 1}, 1, PoseMethod::dynamic, true);
       const EnsembleTally full = s.run({i, i + 1}, 1, PoseMethod::dynamic, false);
       for (std::size_t p = 0; p < early.poses.size(); ++p)
@@ -101,10 +112,11 @@ TEST(Ensemble, EarlyDecisionNeverChangesThePose) {
 TEST(Ensemble, SmoothParticleEarlyDecisionMatchesFullSettle) {
   const Study s("ellipsoid:a=0.625,b=0.5,c=0.285,n=6", 0.01);
   ASSERT_EQ(s.catalog.poses.size(), 2u);  // the two ends of the shortest axis
-  const EnsembleTally early = s.run({0, 12}, 2, PoseMethod::dynamic, true);
-  const EnsembleTally full = s.run({0, 12}, 2, PoseMethod::dynamic, false);
+  const std::uint64_t n = drops(12);
+  const EnsembleTally early = s.run({0, n}, 2, PoseMethod::dynamic, true);
+  const EnsembleTally full = s.run({0, n}, 2, PoseMethod::dynamic, false);
   for (std::size_t p = 0; p < 2; ++p) EXPECT_EQ(early.poses[p].count, full.poses[p].count);
-  EXPECT_EQ(early.status_counts[1], 12u);
+  EXPECT_EQ(early.status_counts[1], n);
   EXPECT_LT(early.steps * 4, full.steps) << "early decision should save most of the rocking";
 }
 

@@ -57,6 +57,9 @@ std::uint64_t batch_hash() {
 constexpr std::uint64_t kGolden = 0x14e33fbb8cb56d31;
 
 TEST(Determinism, FixedBatchHashesToTheGoldenValue) {
+#ifndef NDEBUG
+  GTEST_SKIP() << "checked in the optimised build (the 150 drops take minutes under the sanitizers)";
+#endif
   const std::uint64_t h = batch_hash();
   EXPECT_EQ(h, kGolden) << "new hash: 0x" << std::hex << h;
   EXPECT_EQ(batch_hash(), h) << "two runs in one process differ";
