@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <iostream>
 #include <limits>
@@ -502,22 +501,14 @@ TEST(RestLandscape, RejectsBadInput) {
   EXPECT_THROW(quasi_static_rest_face(box, RestLandscape{}, Vec3::UnitZ()), Error);
 }
 
-TEST(RestLandscape, TenThousandTrianglesInMilliseconds) {
-  // About linear in the hull size. Measured on the reference machine (2 cores, release build): irregular
-  // grain 9680 triangles (326 hull vertices) ~2.5 ms; ellipsoid 9680 triangles (all 4842 vertices on the
-  // hull, long chains of vertex regions) ~40–60 ms. The bound is loose so that sanitizer and debug builds
-  // pass too.
+// Large meshes: a 9,680-triangle grain (326 hull vertices) and ellipsoid (all 4,842 vertices on the hull,
+// long chains of vertex regions) still cover the sphere exactly. Their cost is measured in bench/
+// (landscape/...), not asserted here.
+TEST(RestLandscape, TenThousandTriangleParticlesCoverTheSphere) {
   for (const char* shape : {"irregular:seed=1,n=22", "ellipsoid:a=0.625,b=0.5,c=0.285,n=22"}) {
     const Particle particle = load_particle(shape, 1.0);
     ASSERT_GE(particle.mesh.triangles.size(), 9000u);
-    const auto start = std::chrono::steady_clock::now();
-    const RestLandscape land = compute_rest_landscape(particle);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    EXPECT_NEAR(total(land), 1.0, kTol) << shape;
-    EXPECT_LT(seconds, 30.0) << shape;
-    std::cout << shape << ": " << particle.mesh.triangles.size() << " triangles, "
-              << particle.hull.vertices.size() << " hull vertices, " << particle.hull.faces.size()
-              << " hull faces, " << land.saddles.size() << " saddles: " << seconds * 1e3 << " ms\n";
+    EXPECT_NEAR(total(compute_rest_landscape(particle)), 1.0, kTol) << shape;
   }
 }
 
