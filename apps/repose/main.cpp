@@ -14,10 +14,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "repose 0.1.0");
   const std::vector<repose::cli::Command> commands = {
-      repose::cli::add_info_command(app),
-      repose::cli::add_settle_command(app),
-      repose::cli::add_paper_command(app),
-      repose::cli::add_poses_command(app),
+      repose::cli::add_info_command(app),  repose::cli::add_settle_command(app),
+      repose::cli::add_paper_command(app), repose::cli::add_poses_command(app),
       repose::cli::add_merge_command(app),
   };
   try {
