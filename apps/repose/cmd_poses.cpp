@@ -14,6 +14,7 @@
 
 #include "commands.hpp"
 #include "format.hpp"
+#include "physics_options.hpp"
 #include "repose/model/particle.hpp"
 #include "repose/output/files.hpp"
 #include "repose/poses/ensemble.hpp"
@@ -33,10 +34,7 @@ struct PosesOptions {
   std::uint64_t seed = 1;
   int threads = 0;
   std::string method = "dynamic";
-  double density = 1.0;
-  std::string units = "si";
-  std::string smooth = "auto";
-  SettleParams params;
+  PhysicsOptions physics;
   double damping_ratio = 0.05;
   double persistence = -1;  // fraction of L; < 0 = automatic
   bool full_settle = false;
@@ -152,7 +150,7 @@ int run_poses(const PosesOptions& o, const CLI::App& sub) {
     drops = {0, o.drops};
   else
     throw Error("poses: give the number of drops with -n N (N >= 1) or a drop range with --range BEGIN:END");
-  check_positive("--density", o.density);
+  check_positive("--density", o.physics.density);
   if (o.threads < 0)
     throw Error("option --threads must be >= 0 (0 = all cores), got " + std::to_string(o.threads));
   if (!std::isfinite(o.damping_ratio) || o.damping_ratio < 0)
@@ -166,16 +164,14 @@ int run_poses(const PosesOptions& o, const CLI::App& sub) {
   options.method = parse_pose_method(o.method);
   options.threads = o.threads;
   options.decide_early = !o.full_settle;
-  options.params = o.params;
-  options.params.gravity = standard_gravity(o.units == "cgs" ? UnitSystem::cgs : UnitSystem::si);
-  options.params.smooth = o.smooth == "on"    ? SmoothMode::on
-                          : o.smooth == "off" ? SmoothMode::off
-                                              : SmoothMode::automatic;
+  options.params = o.physics.params;
+  options.params.gravity = standard_gravity(o.physics.unit_system());
+  options.params.smooth = o.physics.smooth_mode();
   if (!given("--damping")) options.params.damping = 0;  // set from the ratio once the particle is known
   validate(options.params);
   if (!o.out_dir.empty()) ensure_output_directory(o.out_dir);
 
-  const Particle particle = load_particle(o.source, o.density);
+  const Particle particle = load_particle(o.source, o.physics.density);
   const bool smooth = options.params.smooth == SmoothMode::on ||
                       (options.params.smooth == SmoothMode::automatic && is_smooth_surface(particle));
   if (!given("--damping"))
@@ -186,7 +182,7 @@ int run_poses(const PosesOptions& o, const CLI::App& sub) {
   const RestLandscape landscape = compute_rest_landscape(particle);
   PosesStudy study;
   study.source = particle.name;
-  study.density = o.density;
+  study.density = o.physics.density;
   study.length = particle.length;
   study.mass = particle.mass.mass;
   study.hull_faces = static_cast<int>(particle.hull.faces.size());
@@ -222,25 +218,10 @@ Command add_poses_command(CLI::App& app) {
   sub->add_option("--method", o->method,
                   "dynamic (the settling engine) or quasi-static (steepest descent of the COM height)")
       ->check(CLI::IsMember({"dynamic", "quasi-static"}));
-  sub->add_option("--density", o->density, "Density (kg/m^3 in si, g/cm^3 in cgs; default 1)");
-  sub->add_option("--units", o->units, "si (m, kg, s; g = 9.81) or cgs (cm, g, s; g = 981)")
-      ->check(CLI::IsMember({"si", "cgs"}));
-  sub->add_option("--damping", o->params.damping,
-                  "Damping coefficient C of Eq 4 (mass*length^2/time); overrides --damping-ratio");
+  add_physics_options(*sub, o->physics,
+                      "Damping coefficient C of Eq 4 (mass*length^2/time); overrides --damping-ratio");
   sub->add_option("--damping-ratio", o->damping_ratio,
                   "Damping as C / (m*sqrt(g*L^3)) (default 0.05; the paper's ellipsoid used 0.063)");
-  sub->add_option("--drop-height", o->params.drop_height,
-                  "Initial height of the lowest point above the wall (default 0: touching, at rest)");
-  sub->add_option("--drop-speed", o->params.drop_speed, "Initial downward speed (default 0)");
-  sub->add_option("--dt", o->params.dt, "Time step (default 1e-3*sqrt(L/g))");
-  sub->add_option("--contact-threshold", o->params.contact_threshold,
-                  "Contact threshold as a fraction of L (default 0.05)");
-  sub->add_option("--line-threshold", o->params.line_threshold,
-                  "Line vs surface: RSS of the best-fit line below this fraction of L^2 (default 0.1)");
-  sub->add_option("--smooth", o->smooth, "Smooth-particle model: auto | on | off (default auto)")
-      ->check(CLI::IsMember({"auto", "on", "off"}));
-  sub->add_option("--max-time", o->params.max_time, "Simulated-time limit per drop (default 2000*sqrt(L/g))");
-  sub->add_option("--max-steps", o->params.max_steps, "Step limit per drop (default 2e7)");
   sub->add_option("--persistence", o->persistence,
                   "Merge stable faces whose barrier is below this fraction of L into one pose (default 0, "
                   "0.01 for smooth particles)");

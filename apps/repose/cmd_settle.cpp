@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "format.hpp"
+#include "physics_options.hpp"
 #include "repose/model/orientation.hpp"
 #include "repose/model/particle.hpp"
 #include "repose/model/scenario.hpp"
@@ -21,10 +22,7 @@ namespace {
 struct SettleOptions {
   std::string source;
   std::string orientation = "identity";
-  double density = 1.0;
-  std::string units = "si";
-  std::string smooth = "auto";
-  SettleParams params;
+  PhysicsOptions physics;
   std::string scenario;
   std::string out_dir;
   std::string vtk_dir;
@@ -90,27 +88,24 @@ RunSetup resolve_setup(const SettleOptions& o, const CLI::App& sub) {
   if (!o.source.empty()) setup.source = o.source;
   if (setup.source.empty())
     throw Error("settle: give a particle (mesh file or shape spec) or --scenario FILE");
-  if (given("--density") || o.scenario.empty()) setup.density = o.density;
+  if (given("--density") || o.scenario.empty()) setup.density = o.physics.density;
   check_positive("--density", setup.density);
   if (given("--orientation") || o.scenario.empty()) setup.orientation = parse_orientation(o.orientation);
-  if (given("--units") || o.scenario.empty()) units = o.units;
+  if (given("--units") || o.scenario.empty()) units = o.physics.units;
   SettleParams& p = setup.params;
   p.gravity = standard_gravity(units == "cgs" ? UnitSystem::cgs : UnitSystem::si);
   const auto take = [&](const char* option, double& field, double value) {
     if (given(option) || o.scenario.empty()) field = value;
   };
-  take("--damping", p.damping, o.params.damping);
-  take("--dt", p.dt, o.params.dt);
-  take("--contact-threshold", p.contact_threshold, o.params.contact_threshold);
-  take("--line-threshold", p.line_threshold, o.params.line_threshold);
-  take("--drop-height", p.drop_height, o.params.drop_height);
-  take("--drop-speed", p.drop_speed, o.params.drop_speed);
-  take("--max-time", p.max_time, o.params.max_time);
-  if (given("--max-steps") || o.scenario.empty()) p.max_steps = o.params.max_steps;
-  if (given("--smooth") || o.scenario.empty())
-    p.smooth = o.smooth == "on"    ? SmoothMode::on
-               : o.smooth == "off" ? SmoothMode::off
-                                   : SmoothMode::automatic;
+  take("--damping", p.damping, o.physics.params.damping);
+  take("--dt", p.dt, o.physics.params.dt);
+  take("--contact-threshold", p.contact_threshold, o.physics.params.contact_threshold);
+  take("--line-threshold", p.line_threshold, o.physics.params.line_threshold);
+  take("--drop-height", p.drop_height, o.physics.params.drop_height);
+  take("--drop-speed", p.drop_speed, o.physics.params.drop_speed);
+  take("--max-time", p.max_time, o.physics.params.max_time);
+  if (given("--max-steps") || o.scenario.empty()) p.max_steps = o.physics.params.max_steps;
+  if (given("--smooth") || o.scenario.empty()) p.smooth = o.physics.smooth_mode();
   validate(p);
   return setup;
 }
@@ -126,23 +121,7 @@ Command add_settle_command(CLI::App& app) {
       "Scenario file (JSON, e.g. scenarios/paper/cylinder-1106.json); options given here override it");
   sub->add_option("--orientation", o->orientation,
                   "Initial orientation, body to world: quat:w,x,y,z | axis-angle:x,y,z,radians | identity");
-  sub->add_option("--density", o->density, "Density (kg/m^3 in si, g/cm^3 in cgs; default 1)");
-  sub->add_option("--units", o->units, "si (m, kg, s; g = 9.81) or cgs (cm, g, s; g = 981)")
-      ->check(CLI::IsMember({"si", "cgs"}));
-  sub->add_option("--damping", o->params.damping,
-                  "Damping coefficient C of Eq 4 (mass*length^2/time; default 0)");
-  sub->add_option("--dt", o->params.dt, "Time step (default 1e-3*sqrt(L/g))");
-  sub->add_option("--contact-threshold", o->params.contact_threshold,
-                  "Contact threshold as a fraction of L (default 0.05, as in the paper)");
-  sub->add_option("--line-threshold", o->params.line_threshold,
-                  "Line vs surface: RSS of the best-fit line below this fraction of L^2 (default 0.1)");
-  sub->add_option("--smooth", o->smooth, "Smooth-particle model: auto | on | off (default auto)")
-      ->check(CLI::IsMember({"auto", "on", "off"}));
-  sub->add_option("--drop-height", o->params.drop_height,
-                  "Initial height of the lowest point above the wall (default 0: touching, at rest)");
-  sub->add_option("--drop-speed", o->params.drop_speed, "Initial downward speed (default 0)");
-  sub->add_option("--max-time", o->params.max_time, "Simulated-time limit (default 2000*sqrt(L/g))");
-  sub->add_option("--max-steps", o->params.max_steps, "Step limit (default 2e7)");
+  add_physics_options(*sub, o->physics, "Damping coefficient C of Eq 4 (mass*length^2/time; default 0)");
   sub->add_option("--out", o->out_dir, "Write timeseries.csv and summary.json into this directory");
   sub->add_option("--vtk", o->vtk_dir, "Write ParaView frames (.vtp) and settling.pvd into this directory");
   sub->add_option("--frame-dt", o->frame_dt, "Time between ParaView frames (default: every step)")

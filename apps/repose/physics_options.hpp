@@ -1,0 +1,44 @@
+// The physical options `settle` and `poses` share: density, units and the engine's parameters.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "repose/model/params.hpp"
+
+namespace repose::cli {
+
+struct PhysicsOptions {
+  double density = 1.0;
+  std::string units = "si";
+  std::string smooth = "auto";
+  SettleParams params;
+
+  UnitSystem unit_system() const { return units == "cgs" ? UnitSystem::cgs : UnitSystem::si; }
+  SmoothMode smooth_mode() const {
+    return smooth == "on" ? SmoothMode::on : smooth == "off" ? SmoothMode::off : SmoothMode::automatic;
+  }
+};
+
+/// Registers --density, --units, --damping (with `damping_help`), --dt, --contact-threshold,
+/// --line-threshold, --smooth, --drop-height, --drop-speed, --max-time and --max-steps on `sub`.
+inline void add_physics_options(CLI::App& sub, PhysicsOptions& o, const std::string& damping_help) {
+  sub.add_option("--density", o.density, "Density (kg/m^3 in si, g/cm^3 in cgs; default 1)");
+  sub.add_option("--units", o.units, "si (m, kg, s; g = 9.81) or cgs (cm, g, s; g = 981)")
+      ->check(CLI::IsMember({"si", "cgs"}));
+  sub.add_option("--damping", o.params.damping, damping_help);
+  sub.add_option("--dt", o.params.dt, "Time step (default 1e-3*sqrt(L/g))");
+  sub.add_option("--contact-threshold", o.params.contact_threshold,
+                 "Contact threshold as a fraction of L (default 0.05, as in the paper)");
+  sub.add_option("--line-threshold", o.params.line_threshold,
+                 "Line vs surface: RSS of the best-fit line below this fraction of L^2 (default 0.1)");
+  sub.add_option("--smooth", o.smooth, "Smooth-particle model: auto | on | off (default auto)")
+      ->check(CLI::IsMember({"auto", "on", "off"}));
+  sub.add_option("--drop-height", o.params.drop_height,
+                 "Initial height of the lowest point above the wall (default 0: touching, at rest)");
+  sub.add_option("--drop-speed", o.params.drop_speed, "Initial downward speed (default 0)");
+  sub.add_option("--max-time", o.params.max_time, "Simulated-time limit per run (default 2000*sqrt(L/g))");
+  sub.add_option("--max-steps", o.params.max_steps, "Step limit per run (default 2e7)");
+}
+
+}  // namespace repose::cli
