@@ -453,6 +453,7 @@ bool ply_type(std::string_view name, PlyType& type) {
 }
 
 struct PlyProperty {
+  std::string name;
   bool is_list = false;
   PlyType count;  // list length type
   PlyType value;
@@ -632,6 +633,9 @@ void check_ply(const std::string& path, std::string_view data) {
                                       ply_type(tokens[3], p.value)
                                 : tokens.size() == 3 && ply_type(tokens[1], p.value);
       if (!ok) fail(path, where + "unsupported property");
+      p.name = std::string(tokens.back());
+      for (const PlyProperty& q : elements.back().properties)
+        if (q.name == p.name) fail(path, where + "property '" + p.name + "' appears twice");
       elements.back().properties.push_back(p);
     } else {
       fail(path, where + "unexpected '" + std::string(key) + "'");
@@ -639,6 +643,27 @@ void check_ply(const std::string& path, std::string_view data) {
   }
   if (!ended) fail(path, "cannot parse: PLY header has no end_header line");
   if (!have_format) fail(path, "cannot parse: PLY header has no format line");
+  // A surface needs vertex positions x, y, z and faces with a vertex_indices (or vertex_index) list. assimp
+  // copes badly without them (an ASan allocator check fired inside it for a vertex element with 'X' instead
+  // of 'x', found by fuzz_mesh_ply), so they are required here, by their standard lower-case names.
+  const auto find_element = [&](const char* name) -> const PlyElement* {
+    for (const PlyElement& e : elements)
+      if (e.name == name) return &e;
+    return nullptr;
+  };
+  const auto has_property = [](const PlyElement& e, std::string_view name, bool list) {
+    return std::any_of(e.properties.begin(), e.properties.end(),
+                       [&](const PlyProperty& p) { return p.name == name && p.is_list == list; });
+  };
+  const PlyElement* vertex = find_element("vertex");
+  if (!vertex) fail(path, "cannot parse: PLY header has no 'vertex' element");
+  for (const char* axis : {"x", "y", "z"})
+    if (!has_property(*vertex, axis, false))
+      fail(path, std::string("cannot parse: PLY 'vertex' element has no scalar property '") + axis + "'");
+  const PlyElement* face = find_element("face");
+  if (!face) fail(path, "cannot parse: PLY header has no 'face' element");
+  if (!has_property(*face, "vertex_indices", true) && !has_property(*face, "vertex_index", true))
+    fail(path, "cannot parse: PLY 'face' element has no 'vertex_indices' list");
 
   // Fail fast on impossible counts: every ASCII value takes at least 2 bytes (digit and separator), every
   // binary element at least its fixed-size part.

@@ -300,6 +300,25 @@ TEST_F(MeshIoTest, PlyEndHeaderMustEndItsLine) {
               HasSubstr("extra.ply: cannot parse: PLY header line 4: unexpected 'x' after end_header"));
 }
 
+// Found by fuzz_mesh_ply: a vertex element with 'X' instead of 'x' made ASan's allocator check fire inside
+// assimp (memory overwritten there). Positions x, y, z and a face index list are required by name.
+TEST(MeshIo, PlyNeedsStandardVertexAndFaceProperties) {
+  EXPECT_EQ(data_error("fuzz/ply_vertex_without_x.ply"),
+            data_file("fuzz/ply_vertex_without_x.ply") +
+                ": cannot parse: PLY 'vertex' element has no scalar property 'x'");
+}
+
+TEST_F(MeshIoTest, PlyHeaderChecksElementsAndProperties) {
+  const std::string head = "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\n";
+  EXPECT_THAT(load_error(write("noz.ply", head + "element face 0\nproperty list uchar int vertex_indices\n"
+                                                 "end_header\n")),
+              HasSubstr("noz.ply: cannot parse: PLY 'vertex' element has no scalar property 'z'"));
+  EXPECT_THAT(load_error(write("noface.ply", head + "property float z\nend_header\n")),
+              HasSubstr("noface.ply: cannot parse: PLY header has no 'face' element"));
+  EXPECT_THAT(load_error(write("twice.ply", head + "property float y\nend_header\n")),
+              HasSubstr("twice.ply: cannot parse: PLY header line 6: property 'y' appears twice"));
+}
+
 // Found by fuzz_mesh_obj: "v\0 1 1 0" was no vertex line to our scan but one to assimp, which then threw
 // and leaked its mesh. Text formats reject control characters other than tab and line ends.
 TEST(MeshIo, ObjControlCharacter) {
@@ -319,9 +338,12 @@ TEST_F(MeshIoTest, TextFormatsRejectControlCharacters) {
   EXPECT_THAT(load_error(write("ff.off", "OFF\n3 1 0\n0 0 0\f\n")),
               HasSubstr("ff.off: line 3: control character (byte 12)"));
   EXPECT_THAT(
-      load_error(write("nul.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n1" +
-                                      std::string(1, '\0') + "\n")),
-      HasSubstr("nul.ply: line 6: control character (byte 0)"));
+      load_error(write(
+          "nul.ply",
+          "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+          "property float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n1 2 3" +
+              std::string(1, '\0') + "\n")),
+      HasSubstr("nul.ply: line 10: control character (byte 0)"));
 }
 
 TEST(MeshIo, ReadFromMemoryMatchesReadMesh) {
