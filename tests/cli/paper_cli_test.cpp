@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "cli_test_support.hpp"
 #include "run_cli.hpp"
 
 namespace {
@@ -27,9 +28,24 @@ TEST(PaperCli, ProducesEveryFileNonTrivially) {
 }
 
 TEST(PaperCli, UnwritableOutputIsABadInput) {
-  const auto r = repose::test::run_cli("paper --out /dev/null/paper");
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("/dev/null/paper"), std::string::npos);
+  repose::test::expect_bad_input(repose::test::run_cli("paper --out /dev/null/paper"),
+                                 {"/dev/null/paper", "cannot create output directory"});
+}
+
+TEST(PaperCli, BadOptions) {
+  using repose::test::expect_bad_input;
+  using repose::test::run_cli;
+  expect_bad_input(run_cli("paper --frames 1"), {"--frames", "1"});
+  expect_bad_input(run_cli("paper --frames abc"), {"--frames", "abc"});
+  expect_bad_input(run_cli("paper --bogus"), {"--bogus"});
+}
+
+// repose merge with nothing to merge, or a missing file.
+TEST(MergeCli, BadInput) {
+  using repose::test::expect_bad_input;
+  using repose::test::run_cli;
+  expect_bad_input(run_cli("merge"), {"files"});
+  expect_bad_input(run_cli("merge /nonexistent/poses.json"), {"/nonexistent/poses.json", "cannot read"});
 }
 
 }  // namespace
