@@ -20,6 +20,16 @@ Particle make_particle(TriangleMesh mesh, const std::string& name, double densit
   p.report = validate_mesh(mesh, name);
 
   const MassProperties input_mass = compute_mass_properties(mesh, density);
+  // A solid's centre of mass lies inside its bounding box. When the signed volume is only round-off (a
+  // nearly flat closed surface), the centre of mass comes out anywhere; such a mesh is no solid (found by
+  // fuzz_mesh_ply: volume 0 after re-centring, centre of mass 1e7 away).
+  const Aabb box = bounding_box(mesh.vertices);
+  const double slack = 1e-6 * box.size().norm();
+  const bool com_inside = input_mass.center_of_mass.allFinite() &&
+                          (input_mass.center_of_mass.array() >= box.min.array() - slack).all() &&
+                          (input_mass.center_of_mass.array() <= box.max.array() + slack).all();
+  if (!(input_mass.volume > 0) || !com_inside)
+    throw Error(name + ": degenerate solid: its volume is too small to locate its centre of mass");
   p.input_offset = input_mass.center_of_mass;
   for (Vec3& v : mesh.vertices) v -= p.input_offset;
   p.mesh = std::move(mesh);
@@ -27,6 +37,8 @@ Particle make_particle(TriangleMesh mesh, const std::string& name, double densit
   // Recompute in the body frame rather than shifting, so the stored centre of mass is zero to round-off of
   // the body-frame coordinates themselves.
   p.mass = compute_mass_properties(p.mesh, density);
+  if (!(p.mass.volume > 0) || !std::isfinite(p.mass.volume) || !p.mass.inertia.allFinite())
+    throw Error(name + ": degenerate solid: its volume is too small to locate its centre of mass");
   p.length = characteristic_length(p.mass.volume);
   p.bounds = bounding_box(p.mesh.vertices);
   p.hull = compute_convex_hull(p.mesh.vertices);

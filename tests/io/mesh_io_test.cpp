@@ -15,6 +15,7 @@
 
 #include "repose/error.hpp"
 #include "repose/geometry/mesh.hpp"
+#include "repose/model/particle.hpp"
 
 namespace repose {
 namespace {
@@ -306,6 +307,19 @@ TEST(MeshIo, PlyNeedsStandardVertexAndFaceProperties) {
   EXPECT_EQ(data_error("fuzz/ply_vertex_without_x.ply"),
             data_file("fuzz/ply_vertex_without_x.ply") +
                 ": cannot parse: PLY 'vertex' element has no scalar property 'x'");
+}
+
+// Found by fuzz_mesh_ply: a closed, consistently wound surface whose signed volume is only round-off; its
+// centre of mass came out 1e7 away and its volume 0 after re-centring. It is no solid.
+TEST(MeshIo, DegenerateVolumeIsRejectedWhenBuildingTheParticle) {
+  const std::string path = data_file("fuzz/ply_degenerate_volume.ply");
+  try {
+    (void)repose::load_particle(path, 1.0);
+    ADD_FAILURE() << "accepted";
+  } catch (const repose::Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              path + ": degenerate solid: its volume is too small to locate its centre of mass");
+  }
 }
 
 TEST_F(MeshIoTest, PlyHeaderChecksElementsAndProperties) {
