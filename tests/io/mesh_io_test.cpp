@@ -322,6 +322,13 @@ TEST(MeshIo, DegenerateVolumeIsRejectedWhenBuildingTheParticle) {
   }
 }
 
+// Found by fuzz_mesh_off: a comment with lone carriage returns ends early for assimp, which then read
+// "81460006007" as a count and tried to allocate 66 GB. A CR is accepted only as part of CRLF.
+TEST(MeshIo, LoneCarriageReturnIsRejected) {
+  EXPECT_EQ(data_error("fuzz/off_lone_carriage_return.off"),
+            data_file("fuzz/off_lone_carriage_return.off") + ": line 2: control character (byte 13)");
+}
+
 TEST_F(MeshIoTest, PlyHeaderChecksElementsAndProperties) {
   const std::string head = "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\n";
   EXPECT_THAT(load_error(write("noz.ply", head + "element face 0\nproperty list uchar int vertex_indices\n"
