@@ -105,6 +105,12 @@ std::string poses_json(const PosesStudy& s) {
 }
 
 PosesStudy parse_poses_json(const std::string& text, const std::string& name) {
+  // Integers are checked to be integers first: nlohmann converts a floating-point value with a plain cast,
+  // undefined behaviour when it does not fit (found by fuzz_poses_result: 1e300 as a count).
+  const auto whole = [&](const json& v) -> const json& {
+    if (!v.is_number_integer()) throw Error(name + ": malformed poses result file (expected an integer)");
+    return v;
+  };
   try {
     const json j = json::parse(text);
     if (j.value("command", "") != "poses") throw Error(name + ": not a repose poses result file");
@@ -114,12 +120,12 @@ PosesStudy parse_poses_json(const std::string& text, const std::string& name) {
     s.density = particle.at("density").get<double>();
     s.length = particle.at("characteristic_length").get<double>();
     s.mass = particle.at("mass").get<double>();
-    s.hull_faces = particle.at("hull_faces").get<int>();
+    s.hull_faces = whole(particle.at("hull_faces")).get<int>();
     s.smooth = particle.at("smooth").get<bool>();
     s.tally.method = parse_pose_method(j.at("method").get<std::string>());
-    s.tally.seed = j.at("seed").get<std::uint64_t>();
+    s.tally.seed = whole(j.at("seed")).get<std::uint64_t>();
     for (const json& r : j.at("drop_ranges"))
-      s.tally.ranges.push_back({r.at(0).get<std::uint64_t>(), r.at(1).get<std::uint64_t>()});
+      s.tally.ranges.push_back({whole(r.at(0)).get<std::uint64_t>(), whole(r.at(1)).get<std::uint64_t>()});
     const json& set = j.at("settings");
     SettleParams& p = s.params;
     p.gravity = set.at("gravity").get<double>();
@@ -131,7 +137,7 @@ PosesStudy parse_poses_json(const std::string& text, const std::string& name) {
     p.drop_height = set.at("drop_height").get<double>();
     p.drop_speed = set.at("drop_speed").get<double>();
     p.max_time = set.at("max_time").get<double>();
-    p.max_steps = set.at("max_steps").get<long>();
+    p.max_steps = whole(set.at("max_steps")).get<long>();
     s.decide_early = set.at("decide_early").get<bool>();
     s.catalog.persistence = set.at("persistence").get<double>();
 
@@ -139,12 +145,13 @@ PosesStudy parse_poses_json(const std::string& text, const std::string& name) {
     s.catalog.poses.resize(poses.size());
     s.tally.poses.resize(poses.size());
     for (const json& e : poses) {
-      const auto index = e.at("pose").get<std::size_t>();
+      const auto index = whole(e.at("pose")).get<std::size_t>();
       if (index >= poses.size())
         throw Error(name + ": pose index " + std::to_string(index) + " out of range");
       RestPose& pose = s.catalog.poses[index];
-      pose.face = e.at("face").get<int>();
-      pose.faces = e.at("faces").get<std::vector<int>>();
+      pose.face = whole(e.at("face")).get<int>();
+      pose.faces.clear();
+      for (const json& f : e.at("faces")) pose.faces.push_back(whole(f).get<int>());
       pose.quasi_static_probability = e.at("quasi_static_probability").get<double>();
       const auto down = e.at("down_normal_body").get<std::vector<double>>();
       if (down.size() != 3) throw Error(name + ": down_normal_body needs 3 numbers");
@@ -153,21 +160,22 @@ PosesStudy parse_poses_json(const std::string& text, const std::string& name) {
       pose.barrier =
           e.at("barrier").is_null() ? std::numeric_limits<double>::infinity() : e.at("barrier").get<double>();
       PoseTally& t = s.tally.poses[index];
-      t.count = e.at("count").get<std::uint64_t>();
+      t.count = whole(e.at("count")).get<std::uint64_t>();
       if (t.count) {
         const auto q = e.at("orientation").get<std::vector<double>>();
         if (q.size() != 4) throw Error(name + ": orientation needs 4 numbers");
         t.orientation = Quat(q[0], q[1], q[2], q[3]);
-        t.first_drop = e.at("first_drop").get<std::uint64_t>();
+        t.first_drop = whole(e.at("first_drop")).get<std::uint64_t>();
       }
     }
     const json& status = j.at("status_counts");
-    for (int k = 1; k < 4; ++k) s.tally.status_counts[k] = status.at(kStatusNames[k]).get<std::uint64_t>();
-    s.tally.decided_early = j.at("decided_early").get<std::uint64_t>();
-    s.tally.steps = j.at("steps").get<std::uint64_t>();
+    for (int k = 1; k < 4; ++k)
+      s.tally.status_counts[k] = whole(status.at(kStatusNames[k])).get<std::uint64_t>();
+    s.tally.decided_early = whole(j.at("decided_early")).get<std::uint64_t>();
+    s.tally.steps = whole(j.at("steps")).get<std::uint64_t>();
     s.tally.seconds = j.at("timing").at("seconds").get<double>();
-    s.threads = j.at("timing").at("threads").get<int>();
-    if (s.tally.drops() != j.at("n").get<std::uint64_t>())
+    s.threads = whole(j.at("timing").at("threads")).get<int>();
+    if (s.tally.drops() != whole(j.at("n")).get<std::uint64_t>())
       throw Error(name + ": n does not match drop_ranges");
     return s;
   } catch (const json::exception& e) {

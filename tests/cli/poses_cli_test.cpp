@@ -148,6 +148,10 @@ TEST_F(PosesCli, MergeRejectsMismatchedOrOverlappingFiles) {
   std::ofstream(dir_ / "junk.json") << "{\"command\": \"poses\"}";
   expect_bad_input(run_cli("merge " + a + " " + (dir_ / "junk.json").string()), {"junk.json", "malformed"});
   expect_bad_input(run_cli("merge " + (dir_ / "none.json").string()), {"none.json"});
+  // Found by fuzz_poses_result: a floating-point value where an integer belongs (undefined behaviour in the
+  // JSON library's conversion before it was checked).
+  const std::string fuzz = std::string(REPOSE_TEST_DATA) + "/fuzz/poses_float_count.json";
+  expect_bad_input(run_cli("merge " + fuzz + " " + fuzz), {"poses_float_count.json"});
 }
 
 }  // namespace
