@@ -1,20 +1,25 @@
 // repose poses MESH|SHAPE -n N ...: rest-pose statistics over many drops from uniformly random orientations.
+// Several particles (files, directories, a manifest) and MPI ranks: see repose/campaign/campaign.hpp.
 // repose merge FILE...: merges result files of disjoint drop ranges into the result of their union.
-#include <unistd.h>
-
 #include <atomic>
 #include <chrono>
-#include <condition_variable>
+#include <exception>
+#include <filesystem>
 #include <cstdio>
 #include <iostream>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <thread>
 
 #include "commands.hpp"
 #include "format.hpp"
 #include "physics_options.hpp"
+#include "progress_bar.hpp"
+#include "repose/campaign/campaign.hpp"
+#include "repose/campaign/summary.hpp"
+#ifdef REPOSE_HAVE_MPI
+#include "repose/campaign/mpi_runner.hpp"
+#endif
 #include "repose/model/particle.hpp"
 #include "repose/output/files.hpp"
 #include "repose/poses/ensemble.hpp"
@@ -28,11 +33,13 @@ namespace repose::cli {
 namespace {
 
 struct PosesOptions {
-  std::string source;
+  std::vector<std::string> inputs;
+  std::string manifest;
   std::uint64_t drops = 0;
   std::string range;
   std::uint64_t seed = 1;
   int threads = 0;
+  std::uint64_t chunk = 0;
   std::string method = "dynamic";
   PhysicsOptions physics;
   double damping_ratio = 0.05;
@@ -41,58 +48,6 @@ struct PosesOptions {
   bool no_progress = false;
   std::string out_dir;
   bool json = false;
-};
-
-// A one-line progress bar with rate and ETA on stderr, redrawn a few times a second by its own thread. Only
-// when stderr is a terminal, so logs and pipes stay clean.
-class ProgressBar {
- public:
-  ProgressBar(std::uint64_t total, bool enabled) : total_(total) {
-    if (!enabled || total == 0 || !isatty(STDERR_FILENO)) return;
-    thread_ = std::thread([this] { loop(); });
-  }
-  ~ProgressBar() {
-    if (!thread_.joinable()) return;
-    {
-      const std::lock_guard lock(mutex_);
-      stop_ = true;
-    }
-    wake_.notify_all();
-    thread_.join();
-    draw();
-    std::fputs("\n", stderr);
-  }
-  std::atomic<std::uint64_t>* counter() { return &done_; }
-
- private:
-  void loop() {
-    std::unique_lock lock(mutex_);
-    while (!wake_.wait_for(lock, std::chrono::milliseconds(250), [this] { return stop_; })) draw();
-  }
-  void draw() {
-    const std::uint64_t done = done_.load(std::memory_order_relaxed);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    const double fraction = static_cast<double>(done) / static_cast<double>(total_);
-    const double rate = seconds > 0 ? static_cast<double>(done) / seconds : 0;
-    const double eta = rate > 0 ? static_cast<double>(total_ - done) / rate : 0;
-    constexpr int kWidth = 30;
-    const int filled = static_cast<int>(fraction * kWidth);
-    std::fprintf(stderr, "\r[%s%s] %llu/%llu %5.1f%%  %.1f drops/s  ETA %02d:%02d:%02d ",
-                 std::string(static_cast<std::size_t>(filled), '#').c_str(),
-                 std::string(static_cast<std::size_t>(kWidth - filled), ' ').c_str(),
-                 static_cast<unsigned long long>(done), static_cast<unsigned long long>(total_),
-                 100 * fraction, rate, static_cast<int>(eta / 3600), static_cast<int>(eta / 60) % 60,
-                 static_cast<int>(eta) % 60);
-    std::fflush(stderr);
-  }
-
-  std::uint64_t total_;
-  std::atomic<std::uint64_t> done_{0};
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  bool stop_ = false;
-  std::thread thread_;
 };
 
 // Checks the text of an unsigned option before CLI11 converts it, which would wrap "-5" into a huge count.
@@ -123,6 +78,13 @@ DropRange parse_range(const std::string& text) {
   return r;
 }
 
+void warn_unrested(const std::string& what, std::uint64_t unrested) {
+  if (unrested > 0)
+    std::cerr << "repose: warning: " << what << unrested
+              << " drops did not come to rest within the limits (see status_counts; raise --max-time or "
+                 "--max-steps)\n";
+}
+
 void emit(const PosesStudy& study, const std::string& out_dir, bool json) {
   const std::string text = poses_json(study);
   if (!out_dir.empty()) {
@@ -133,21 +95,18 @@ void emit(const PosesStudy& study, const std::string& out_dir, bool json) {
     std::cout << text;
   else
     std::cout << poses_table(study);
-  const std::uint64_t unrested = study.tally.status_counts[2] + study.tally.status_counts[3];
-  if (unrested > 0)
-    std::cerr << "repose: warning: " << unrested
-              << " drops did not come to rest within the limits (see status_counts; raise --max-time or "
-                 "--max-steps)\n";
+  warn_unrested("", study.tally.status_counts[2] + study.tally.status_counts[3]);
 }
 
-int run_poses(const PosesOptions& o, const CLI::App& sub) {
+// The job's settings from the options (the same on every rank). Throws repose::Error for bad values.
+CampaignOptions campaign_options(const PosesOptions& o, const CLI::App& sub, int threads) {
   const auto given = [&](const char* option) { return sub.count(option) > 0; };
-  DropRange drops;
+  CampaignOptions c;
   if (given("--range") && given("--drops")) throw Error("give either -n/--drops or --range, not both");
   if (given("--range"))
-    drops = parse_range(o.range);
+    c.drops = parse_range(o.range);
   else if (given("--drops") && o.drops > 0)
-    drops = {0, o.drops};
+    c.drops = {0, o.drops};
   else
     throw Error("poses: give the number of drops with -n N (N >= 1) or a drop range with --range BEGIN:END");
   check_positive("--density", o.physics.density);
@@ -157,46 +116,98 @@ int run_poses(const PosesOptions& o, const CLI::App& sub) {
     throw Error("option --damping-ratio must be a finite number >= 0, got " + num(o.damping_ratio));
   if (given("--persistence") && (!std::isfinite(o.persistence) || o.persistence < 0))
     throw Error("option --persistence must be a finite number >= 0, got " + num(o.persistence));
+  StudySettings& s = c.settings;
+  s.seed = o.seed;
+  s.method = parse_pose_method(o.method);
+  s.density = o.physics.density;
+  s.params = o.physics.params;
+  s.params.gravity = standard_gravity(o.physics.unit_system());
+  s.params.smooth = o.physics.smooth_mode();
+  s.damping_given = given("--damping");
+  if (!s.damping_given) s.params.damping = 0;  // set from the ratio once the particle is known
+  validate(s.params);
+  s.damping_ratio = o.damping_ratio;
+  s.persistence = given("--persistence") ? o.persistence : -1;
+  s.decide_early = !o.full_settle;
+  c.threads = threads;
+  c.chunk = o.chunk;
+  if (!o.out_dir.empty()) c.checkpoint_dir = (std::filesystem::path(o.out_dir) / ".repose-checkpoint").string();
+  return c;
+}
 
-  EnsembleOptions options;
-  options.seed = o.seed;
-  options.drops = drops;
-  options.method = parse_pose_method(o.method);
-  options.threads = o.threads;
-  options.decide_early = !o.full_settle;
-  options.params = o.physics.params;
-  options.params.gravity = standard_gravity(o.physics.unit_system());
-  options.params.smooth = o.physics.smooth_mode();
-  if (!given("--damping")) options.params.damping = 0;  // set from the ratio once the particle is known
-  validate(options.params);
-  if (!o.out_dir.empty()) ensure_output_directory(o.out_dir);
+std::unique_ptr<WorkRunner> make_runner() {
+#ifdef REPOSE_HAVE_MPI
+  if (launched_by_mpi()) return make_mpi_runner();
+#endif
+  return std::make_unique<LocalRunner>();
+}
 
-  const Particle particle = load_particle(o.source, o.physics.density);
-  const bool smooth = options.params.smooth == SmoothMode::on ||
-                      (options.params.smooth == SmoothMode::automatic && is_smooth_surface(particle));
-  if (!given("--damping"))
-    options.params.damping = o.damping_ratio * particle.mass.mass *
-                             std::sqrt(options.params.gravity * std::pow(particle.length, 3));
-  const double persistence =
-      given("--persistence") ? o.persistence * particle.length : default_persistence(particle, smooth);
-  const RestLandscape landscape = compute_rest_landscape(particle);
-  PosesStudy study;
-  study.source = particle.name;
-  study.density = o.physics.density;
-  study.length = particle.length;
-  study.mass = particle.mass.mass;
-  study.hull_faces = static_cast<int>(particle.hull.faces.size());
-  study.smooth = smooth;
-  study.params = options.params;
-  study.decide_early = options.decide_early;
-  study.catalog = catalog_rest_poses(particle, landscape, persistence);
-  study.threads = o.threads > 0 ? o.threads : static_cast<int>(std::thread::hardware_concurrency());
-  {
-    ProgressBar bar(drops.size(), !o.no_progress);
-    options.progress = bar.counter();
-    study.tally = run_ensemble(particle, landscape, study.catalog, options);
+int run_poses(const PosesOptions& o, const CLI::App& sub) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::unique_ptr<WorkRunner> runner = make_runner();
+  // Ranks that share a node share its cores.
+  const int threads = o.threads > 0 ? o.threads
+                                    : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) /
+                                                      runner->ranks_on_this_node());
+  // Options are checked on every rank alike, but only the root reports a problem.
+  CampaignOptions campaign;
+  std::exception_ptr bad_options;
+  try {
+    campaign = campaign_options(o, sub, threads);
+  } catch (const Error&) {
+    bad_options = std::current_exception();
   }
-  emit(study, o.out_dir, o.json);
+  std::vector<CampaignParticle> particles;
+  const auto resolve = [&] {
+    if (bad_options) std::rethrow_exception(bad_options);
+    if (!o.out_dir.empty()) ensure_output_directory(o.out_dir);
+    particles = resolve_particles(o.inputs, o.manifest);
+    if (particles.size() > 1 && o.out_dir.empty())
+      throw Error("poses: " + std::to_string(particles.size()) +
+                  " particles need --out DIR (one result file per particle and a summary)");
+    return particles;
+  };
+
+  std::atomic<std::uint64_t> done{0};
+  std::unique_ptr<ProgressBar> bar;
+  campaign.progress = &done;
+  campaign.on_start = [&](std::uint64_t remaining) {
+    bar = std::make_unique<ProgressBar>(remaining, done, !o.no_progress);
+  };
+  const auto result_file = [&](std::size_t i) { return particles[i].name + ".poses.json"; };
+  campaign.on_particle_done = [&](std::size_t i, const PosesStudy& study) {
+    if (particles.size() < 2) return;  // written below, as poses.json
+    const std::string base = (std::filesystem::path(o.out_dir) / particles[i].name).string();
+    write_file_atomically(base + ".poses.json", poses_json(study));
+    write_file_atomically(base + ".poses.csv", poses_csv(study));
+  };
+  std::vector<PosesStudy> studies;
+  try {
+    studies = run_campaign(resolve, campaign, *runner);
+  } catch (const RootFailed& failed) {
+    return failed.exit_code;  // the root reports
+  }
+  bar.reset();
+  if (!runner->is_root()) return 0;
+
+  if (studies.size() == 1) {
+    emit(studies[0], o.out_dir, o.json);
+    return 0;
+  }
+  CampaignSummary summary;
+  summary.particles = particles;
+  summary.studies = studies;
+  for (std::size_t i = 0; i < particles.size(); ++i) summary.result_files.push_back(result_file(i));
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.ranks = runner->ranks();
+  summary.threads = threads;
+  const std::string table = summary_markdown(summary);
+  write_file_atomically(o.out_dir + "/summary.csv", summary_csv(summary));
+  write_file_atomically(o.out_dir + "/summary.md", table);
+  write_file_atomically(o.out_dir + "/summary.json", summary_json(summary));
+  std::cout << (o.json ? summary_json(summary) : table);
+  for (std::size_t i = 0; i < particles.size(); ++i)
+    warn_unrested(particles[i].name + ": ", studies[i].tally.status_counts[2] + studies[i].tally.status_counts[3]);
   return 0;
 }
 
@@ -207,14 +218,24 @@ Command add_poses_command(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "poses",
       "Rest-pose statistics: drop the particle from uniformly random orientations, count where it rests");
-  sub->add_option("particle", o->source, "Mesh file (STL, OBJ, PLY, OFF) or shape spec")->required();
+  sub->add_option("particles", o->inputs,
+                  "Mesh files (STL, OBJ, PLY, OFF), shape specs or directories of mesh files; with several "
+                  "particles, --out is required");
+  sub->add_option("--manifest", o->manifest,
+                  "File listing particles, one mesh path or shape spec per line (# comments; paths relative "
+                  "to the file)");
   sub->add_option("-n,--drops", o->drops, "Number of drops (drop indices 0 .. N-1)")->check(whole_number(1));
   sub->add_option(
       "--range", o->range,
       "Run only drops BEGIN .. END-1 (for splitting a study; merge the results with repose merge)");
   sub->add_option("--seed", o->seed, "Seed: drop i's orientation depends only on (seed, i) (default 1)")
       ->check(whole_number(0));
-  sub->add_option("--threads", o->threads, "Worker threads (default 0: all cores)");
+  sub->add_option("--threads", o->threads,
+                  "Worker threads per process (default 0: all cores, shared among the MPI ranks of a node)");
+  sub->add_option("--chunk", o->chunk,
+                  "Drops per work item: the unit of load balancing and of checkpointing (default: about 64 "
+                  "items per particle, 128 to 65536 drops each)")
+      ->check(whole_number(1));
   sub->add_option("--method", o->method,
                   "dynamic (the settling engine) or quasi-static (steepest descent of the COM height)")
       ->check(CLI::IsMember({"dynamic", "quasi-static"}));
@@ -228,7 +249,10 @@ Command add_poses_command(CLI::App& app) {
   sub->add_flag("--full-settle", o->full_settle,
                 "Simulate every drop to rest instead of stopping once its energy cannot leave its pose");
   sub->add_flag("--no-progress", o->no_progress, "No progress bar (it is shown only on a terminal anyway)");
-  sub->add_option("--out", o->out_dir, "Write poses.json and poses.csv into this directory");
+  sub->add_option("--out", o->out_dir,
+                  "Write poses.json and poses.csv (several particles: NAME.poses.json/.csv and summary.csv/.md/"
+                  ".json) into this directory, with a checkpoint in DIR/.repose-checkpoint: rerunning the same "
+                  "command after an interruption resumes");
   sub->add_flag("--json", o->json, "Print the JSON result instead of the table");
   return {sub, [o, sub]() { return run_poses(*o, *sub); }};
 }

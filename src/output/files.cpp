@@ -1,5 +1,6 @@
 #include "repose/output/files.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -12,12 +13,14 @@
 
 namespace repose {
 
-void write_file_atomically(const std::string& path, const std::string& content) {
+void write_file_atomically(const std::string& path, const std::string& content, FileDurability durability) {
   namespace fs = std::filesystem;
   const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
   std::FILE* f = std::fopen(tmp.c_str(), "wb");
   if (!f) throw Error(path + ": cannot write: " + std::strerror(errno));
-  const bool written = std::fwrite(content.data(), 1, content.size(), f) == content.size();
+  bool written = std::fwrite(content.data(), 1, content.size(), f) == content.size();
+  if (written && durability == FileDurability::synced)
+    written = std::fflush(f) == 0 && ::fsync(::fileno(f)) == 0;
   const int saved_errno = errno;
   const bool closed = std::fclose(f) == 0;
   if (!written || !closed) {
@@ -29,6 +32,15 @@ void write_file_atomically(const std::string& path, const std::string& content) 
   if (ec) {
     std::remove(tmp.c_str());
     throw Error(path + ": cannot write: " + ec.message());
+  }
+  if (durability == FileDurability::synced) {
+    // The rename itself is durable once the directory is synced.
+    const std::string dir = fs::path(path).parent_path().empty() ? "." : fs::path(path).parent_path().string();
+    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
+    if (fd >= 0) {
+      ::fsync(fd);
+      ::close(fd);
+    }
   }
 }
 

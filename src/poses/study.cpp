@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "repose/error.hpp"
+#include "repose/sim/settle.hpp"
 
 namespace repose {
 
@@ -61,12 +62,68 @@ std::vector<int> report_order(const PosesStudy& study) {
   return order;
 }
 
+PosesStudy prepare_study(const Particle& particle, const RestLandscape& landscape, const StudySettings& settings) {
+  if (!std::isfinite(settings.damping_ratio) || settings.damping_ratio < 0)
+    throw Error("the damping ratio must be a finite number >= 0");
+  if (!std::isfinite(settings.persistence)) throw Error("the persistence must be a finite number");
+  SettleParams params = settings.params;
+  if (!settings.damping_given) params.damping = 0;
+  validate(params);
+  const bool smooth =
+      params.smooth == SmoothMode::on || (params.smooth == SmoothMode::automatic && is_smooth_surface(particle));
+  if (!settings.damping_given)
+    params.damping =
+        settings.damping_ratio * particle.mass.mass * std::sqrt(params.gravity * std::pow(particle.length, 3));
+  const double persistence = settings.persistence >= 0 ? settings.persistence * particle.length
+                                                       : default_persistence(particle, smooth);
+  PosesStudy study;
+  study.source = particle.name;
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(geometry_fingerprint(particle)));
+  study.fingerprint = hex;
+  study.density = settings.density;
+  study.length = particle.length;
+  study.mass = particle.mass.mass;
+  study.hull_faces = static_cast<int>(particle.hull.faces.size());
+  study.smooth = smooth;
+  study.params = params;
+  study.decide_early = settings.decide_early;
+  study.catalog = catalog_rest_poses(particle, landscape, persistence);
+  study.tally.seed = settings.seed;
+  study.tally.method = settings.method;
+  study.tally.poses.resize(study.catalog.poses.size());
+  return study;
+}
+
+EnsembleOptions ensemble_options(const PosesStudy& study, DropRange drops, int threads) {
+  EnsembleOptions options;
+  options.seed = study.tally.seed;
+  options.drops = drops;
+  options.method = study.tally.method;
+  options.params = study.params;
+  options.decide_early = study.decide_early;
+  options.threads = threads;
+  return options;
+}
+
+std::uint64_t geometry_fingerprint(const Particle& particle) {
+  std::uint64_t hash = 0xcbf29ce484222325ULL;  // FNV-1a, 64 bit
+  const auto add = [&](const void* data, std::size_t size) {
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < size; ++i) hash = (hash ^ bytes[i]) * 0x100000001b3ULL;
+  };
+  for (const Vec3& v : particle.mesh.vertices) add(v.data(), 3 * sizeof(double));
+  for (const auto& t : particle.mesh.triangles) add(t.data(), sizeof t);
+  return hash;
+}
+
 std::string poses_json(const PosesStudy& s) {
   const std::uint64_t n = s.tally.drops();
   json j;
   j["command"] = "poses";
   j["particle"] = {{"source", s.source}, {"density", s.density},       {"characteristic_length", s.length},
                    {"mass", s.mass},     {"hull_faces", s.hull_faces}, {"smooth", s.smooth}};
+  if (!s.fingerprint.empty()) j["particle"]["fingerprint"] = s.fingerprint;
   j["method"] = to_string(s.tally.method);
   j["seed"] = s.tally.seed;
   j["n"] = n;
@@ -117,6 +174,7 @@ PosesStudy parse_poses_json(const std::string& text, const std::string& name) {
     PosesStudy s;
     const json& particle = j.at("particle");
     s.source = particle.at("source").get<std::string>();
+    if (particle.contains("fingerprint")) s.fingerprint = particle.at("fingerprint").get<std::string>();
     s.density = particle.at("density").get<double>();
     s.length = particle.at("characteristic_length").get<double>();
     s.mass = particle.at("mass").get<double>();
@@ -183,18 +241,29 @@ PosesStudy parse_poses_json(const std::string& text, const std::string& name) {
   }
 }
 
-PosesStudy merge_studies(const PosesStudy& a, const PosesStudy& b) {
+void require_same_study(const PosesStudy& a, const PosesStudy& b) {
   const auto require_same = [](bool same, const std::string& what) {
     if (!same) throw Error("cannot merge results for different " + what);
   };
   require_same(a.source == b.source && a.density == b.density && a.length == b.length && a.mass == b.mass &&
-                   a.hull_faces == b.hull_faces && a.smooth == b.smooth,
+                   a.hull_faces == b.hull_faces && a.smooth == b.smooth &&
+                   (a.fingerprint.empty() || b.fingerprint.empty() || a.fingerprint == b.fingerprint),
                "particles ('" + a.source + "' and '" + b.source + "')");
+  if (a.tally.seed != b.tally.seed)
+    throw Error("cannot merge results of different seeds (" + std::to_string(a.tally.seed) + " and " +
+                std::to_string(b.tally.seed) + ")");
+  if (a.tally.method != b.tally.method)
+    throw Error(std::string("cannot merge results of different methods (") + to_string(a.tally.method) +
+                " and " + to_string(b.tally.method) + ")");
   // The settings must agree exactly: the files round-trip doubles, so any difference is a different setting.
   require_same(json(settings_json(a)) == json(settings_json(b)), "settings (damping, dt, thresholds, ...)");
   require_same(a.catalog.poses.size() == b.catalog.poses.size(), "rest-pose catalogues");
   for (std::size_t p = 0; p < a.catalog.poses.size(); ++p)
     require_same(a.catalog.poses[p].faces == b.catalog.poses[p].faces, "rest-pose catalogues");
+}
+
+PosesStudy merge_studies(const PosesStudy& a, const PosesStudy& b) {
+  require_same_study(a, b);
   PosesStudy m = a;
   m.tally = merge_tallies(a.tally, b.tally);
   m.threads = std::max(a.threads, b.threads);

@@ -7,8 +7,13 @@
 
 namespace repose {
 
+/// `synced`: the data reach the disk before the rename (and the rename before returning), so the file
+/// survives a power cut too, not only a killed process. For checkpoints; costs a disk flush.
+enum class FileDurability { normal, synced };
+
 /// Writes `content` to `path` atomically. Throws repose::Error ("PATH: cannot write: reason").
-void write_file_atomically(const std::string& path, const std::string& content);
+void write_file_atomically(const std::string& path, const std::string& content,
+                           FileDurability durability = FileDurability::normal);
 
 /// Reads a whole text file (a result file being merged, for instance). Throws repose::Error ("PATH: cannot
 /// read: reason") if it cannot be opened or is larger than `max_bytes`.

@@ -1,0 +1,160 @@
+// Running a job of work items and merging their results: see campaign.hpp.
+#include "repose/campaign/campaign.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <thread>
+
+#include "repose/error.hpp"
+#include "repose/model/particle.hpp"
+#include "repose/output/files.hpp"
+#include "repose/poses/landscape.hpp"
+
+namespace repose {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// What a rank needs to run drops of one particle.
+struct ParticleModel {
+  Particle particle;
+  RestLandscape landscape;
+  PosesStudy header;  // settings and catalogue, nothing counted
+};
+
+std::unique_ptr<ParticleModel> load_model(const CampaignParticle& p, const StudySettings& settings) {
+  auto model = std::make_unique<ParticleModel>();
+  model->particle = load_particle(p.source, settings.density);
+  model->landscape = compute_rest_landscape(model->particle);
+  model->header = prepare_study(model->particle, model->landscape, settings);
+  return model;
+}
+
+std::string describe(const DropRange& r) {
+  std::string text = "[";
+  text += std::to_string(r.begin) + ", " + std::to_string(r.end) + ")";
+  return text;
+}
+
+// The root's view of the job: every particle's study so far, what is left, and the checkpoint.
+struct RootState {
+  std::vector<PosesStudy> studies;
+  std::vector<std::vector<DropRange>> remaining;
+  std::vector<double> cost_per_drop;
+};
+
+RootState prepare_root(const std::vector<CampaignParticle>& particles, const CampaignOptions& options) {
+  RootState state;
+  for (const CampaignParticle& p : particles) {
+    const std::unique_ptr<ParticleModel> model = load_model(p, options.settings);
+    PosesStudy study = model->header;
+    std::vector<DropRange> left{options.drops};
+    const std::string path = options.checkpoint_dir.empty() ? "" : checkpoint_path(options.checkpoint_dir, p);
+    std::error_code ec;
+    if (!path.empty() && fs::exists(path, ec)) {
+      const PosesStudy saved = parse_poses_json(read_text_file(path), path);
+      try {
+        study = merge_studies(study, saved);
+        left = remaining_ranges(options.drops, saved.tally.ranges);
+      } catch (const Error& e) {
+        throw Error(path + ": checkpoint of a different run (" + e.what() +
+                    "); delete it to start over, or use another output directory");
+      }
+    }
+    state.studies.push_back(std::move(study));
+    state.remaining.push_back(std::move(left));
+    // The engine's cost per step grows with the hull's size; smooth particles also take more steps.
+    const double hull = static_cast<double>(model->particle.hull.vertices.size());
+    state.cost_per_drop.push_back(hull * (model->header.smooth ? 4.0 : 1.0));
+  }
+  return state;
+}
+
+}  // namespace
+
+std::string checkpoint_path(const std::string& checkpoint_dir, const CampaignParticle& particle) {
+  return (fs::path(checkpoint_dir) / (particle.name + ".json")).string();
+}
+
+std::vector<PosesStudy> run_campaign(const std::function<std::vector<CampaignParticle>()>& particles_on_root,
+                                     const CampaignOptions& options, WorkRunner& runner) {
+  using nlohmann::json;
+  // The root resolves the particles, loads each once (so that bad input is reported before any work) and
+  // reads the checkpoint; the other ranks learn the particle list.
+  std::vector<CampaignParticle> particles;
+  RootState state;
+  std::vector<WorkItem> items;
+  const std::string list = prepare_on_root(runner, [&] {
+    particles = particles_on_root();
+    if (options.drops.size() == 0) throw Error("no drops to run");
+    state = prepare_root(particles, options);
+    if (!options.checkpoint_dir.empty()) ensure_output_directory(options.checkpoint_dir);
+    const std::uint64_t chunk = options.chunk ? options.chunk : auto_chunk(options.drops.size(), options.threads);
+    items = plan_work(state.remaining, state.cost_per_drop, chunk);
+    json j = json::array();
+    for (const CampaignParticle& p : particles) j.push_back({p.name, p.source});
+    return j.dump();
+  });
+  if (!runner.is_root())
+    for (const json& p : json::parse(list)) particles.push_back({p.at(0).get<std::string>(), p.at(1).get<std::string>()});
+
+  const int threads = options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  // Any rank: run an item. The last particle's model is kept, since items of one particle mostly follow
+  // each other.
+  std::uint32_t cached_index = 0;
+  std::unique_ptr<ParticleModel> cached;
+  const WorkRunner::Work work = [&](const WorkItem& item, std::atomic<std::uint64_t>* progress) {
+    if (item.particle >= particles.size()) throw Error("work item for an unknown particle");
+    if (!cached || cached_index != item.particle) {
+      cached.reset();
+      cached = load_model(particles[item.particle], options.settings);
+      cached_index = item.particle;
+    }
+    PosesStudy part = cached->header;
+    EnsembleOptions ensemble = ensemble_options(part, item.drops, options.threads);
+    ensemble.progress = progress;
+    part.tally = run_ensemble(cached->particle, cached->landscape, part.catalog, ensemble);
+    part.threads = threads;
+    return poses_json(part);
+  };
+
+  const auto complete = [&](std::size_t p) { return state.studies[p].tally.drops() == options.drops.size(); };
+  // Root: merge a result, save the checkpoint, report a complete particle.
+  const WorkRunner::Absorb absorb = [&](const WorkItem& item, const std::string& result) {
+    const CampaignParticle& p = particles.at(item.particle);
+    const std::string name = p.source + " drops " + describe(item.drops);
+    const PosesStudy part = parse_poses_json(result, name);
+    try {
+      state.studies[item.particle] = merge_studies(state.studies[item.particle], part);
+    } catch (const Error& e) {
+      throw Error(name + ": " + e.what() + " (ranks computed different results: same binary everywhere?)");
+    }
+    if (!options.checkpoint_dir.empty())
+      write_file_atomically(checkpoint_path(options.checkpoint_dir, p), poses_json(state.studies[item.particle]),
+                            FileDurability::synced);
+    if (complete(item.particle) && options.on_particle_done) options.on_particle_done(item.particle, state.studies[item.particle]);
+  };
+
+  if (runner.is_root()) {
+    std::uint64_t left = 0;
+    for (const WorkItem& item : items) left += item.drops.size();
+    if (options.on_start) options.on_start(left);
+    for (std::size_t p = 0; p < particles.size(); ++p)
+      if (complete(p) && options.on_particle_done) options.on_particle_done(p, state.studies[p]);
+  }
+  runner.run(items, work, absorb, options.progress);
+  if (!runner.is_root()) return {};
+
+  if (!options.checkpoint_dir.empty()) {
+    std::error_code ec;
+    for (const CampaignParticle& p : particles) fs::remove(checkpoint_path(options.checkpoint_dir, p), ec);
+    fs::remove(options.checkpoint_dir, ec);  // only if empty
+  }
+  return std::move(state.studies);
+}
+
+}  // namespace repose
