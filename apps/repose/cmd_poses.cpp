@@ -85,16 +85,17 @@ void warn_unrested(const std::string& what, std::uint64_t unrested) {
                  "--max-steps)\n";
 }
 
-void emit(const PosesStudy& study, const std::string& out_dir, bool json) {
-  const std::string text = poses_json(study);
-  if (!out_dir.empty()) {
-    write_file_atomically(out_dir + "/poses.json", text);
-    write_file_atomically(out_dir + "/poses.csv", poses_csv(study));
+// Writes BASE.json and BASE.csv.
+void write_result(const std::string& base, const PosesStudy& study) {
+  for (const char* ext : {".json", ".csv"}) {
+    const std::string path = base + ext;
+    write_file_atomically(path, ext[1] == 'j' ? poses_json(study) : poses_csv(study));
+    remove_temporaries(path);
   }
-  if (json)
-    std::cout << text;
-  else
-    std::cout << poses_table(study);
+}
+
+void print_result(const PosesStudy& study, bool json) {
+  std::cout << (json ? poses_json(study) : poses_table(study));
   warn_unrested("", study.tally.status_counts[2] + study.tally.status_counts[3]);
 }
 
@@ -174,12 +175,26 @@ int run_poses(const PosesOptions& o, const CLI::App& sub) {
   campaign.on_start = [&](std::uint64_t remaining) {
     bar = std::make_unique<ProgressBar>(remaining, done, !o.no_progress);
   };
-  const auto result_file = [&](std::size_t i) { return particles[i].name + ".poses.json"; };
-  campaign.on_particle_done = [&](std::size_t i, const PosesStudy& study) {
-    if (particles.size() < 2) return;  // written below, as poses.json
-    const std::string base = (std::filesystem::path(o.out_dir) / particles[i].name).string();
-    write_file_atomically(base + ".poses.json", poses_json(study));
-    write_file_atomically(base + ".poses.csv", poses_csv(study));
+  // One particle: DIR/poses.json; several: DIR/NAME.poses.json. Written before the checkpoint goes.
+  const auto result_base = [&](std::size_t i) {
+    return (std::filesystem::path(o.out_dir) / (particles.size() == 1 ? "poses" : particles[i].name + ".poses"))
+        .string();
+  };
+  CampaignSummary summary;
+  campaign.on_complete = [&](const std::vector<PosesStudy>& studies) {
+    summary.particles = particles;
+    summary.studies = studies;
+    for (std::size_t i = 0; i < particles.size(); ++i)
+      summary.result_files.push_back(std::filesystem::path(result_base(i)).filename().string() + ".json");
+    summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    summary.ranks = runner->ranks();
+    summary.threads = threads;
+    if (o.out_dir.empty()) return;
+    for (std::size_t i = 0; i < particles.size(); ++i) write_result(result_base(i), studies[i]);
+    if (particles.size() == 1) return;
+    write_file_atomically(o.out_dir + "/summary.csv", summary_csv(summary));
+    write_file_atomically(o.out_dir + "/summary.md", summary_markdown(summary));
+    write_file_atomically(o.out_dir + "/summary.json", summary_json(summary));
   };
   std::vector<PosesStudy> studies;
   try {
@@ -191,21 +206,10 @@ int run_poses(const PosesOptions& o, const CLI::App& sub) {
   if (!runner->is_root()) return 0;
 
   if (studies.size() == 1) {
-    emit(studies[0], o.out_dir, o.json);
+    print_result(studies[0], o.json);
     return 0;
   }
-  CampaignSummary summary;
-  summary.particles = particles;
-  summary.studies = studies;
-  for (std::size_t i = 0; i < particles.size(); ++i) summary.result_files.push_back(result_file(i));
-  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  summary.ranks = runner->ranks();
-  summary.threads = threads;
-  const std::string table = summary_markdown(summary);
-  write_file_atomically(o.out_dir + "/summary.csv", summary_csv(summary));
-  write_file_atomically(o.out_dir + "/summary.md", table);
-  write_file_atomically(o.out_dir + "/summary.json", summary_json(summary));
-  std::cout << (o.json ? summary_json(summary) : table);
+  std::cout << (o.json ? summary_json(summary) : summary_markdown(summary));
   for (std::size_t i = 0; i < particles.size(); ++i)
     warn_unrested(particles[i].name + ": ", studies[i].tally.status_counts[2] + studies[i].tally.status_counts[3]);
   return 0;
@@ -280,7 +284,8 @@ Command add_merge_command(CLI::App& app) {
                 throw Error(o->files[i] + ": " + e.what());
               }
             }
-            emit(merged, o->out_dir, o->json);
+            if (!o->out_dir.empty()) write_result(o->out_dir + "/poses", merged);
+            print_result(merged, o->json);
             return 0;
           }};
 }

@@ -102,28 +102,34 @@ std::vector<PosesStudy> run_campaign(const std::function<std::vector<CampaignPar
   if (!runner.is_root())
     for (const json& p : json::parse(list)) particles.push_back({p.at(0).get<std::string>(), p.at(1).get<std::string>()});
 
-  const int threads = options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  // Any rank: run an item. The last particle's model is kept, since items of one particle mostly follow
-  // each other.
+  const int threads = options.threads > 0 ? options.threads
+                                          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  // Any rank: the model of a particle. The last one is kept, since items of one particle mostly follow each
+  // other.
   std::uint32_t cached_index = 0;
   std::unique_ptr<ParticleModel> cached;
-  const WorkRunner::Work work = [&](const WorkItem& item, std::atomic<std::uint64_t>* progress) {
-    if (item.particle >= particles.size()) throw Error("work item for an unknown particle");
-    if (!cached || cached_index != item.particle) {
+  const auto model_of = [&](std::uint32_t index) -> const ParticleModel& {
+    if (index >= particles.size()) throw Error("work item for an unknown particle");
+    if (!cached || cached_index != index) {
       cached.reset();
-      cached = load_model(particles[item.particle], options.settings);
-      cached_index = item.particle;
+      cached = load_model(particles[index], options.settings);
+      cached_index = index;
     }
-    PosesStudy part = cached->header;
+    return *cached;
+  };
+  // Runs drops of one particle. `finish`: simulate each pose's first drop to rest (see below).
+  const auto run_drops = [&](const WorkItem& item, std::atomic<std::uint64_t>* progress, bool finish) {
+    const ParticleModel& model = model_of(item.particle);
+    PosesStudy part = model.header;
     EnsembleOptions ensemble = ensemble_options(part, item.drops, options.threads);
     ensemble.progress = progress;
-    part.tally = run_ensemble(cached->particle, cached->landscape, part.catalog, ensemble);
+    ensemble.finish_representatives = finish;
+    part.tally = run_ensemble(model.particle, model.landscape, part.catalog, ensemble);
     part.threads = threads;
     return poses_json(part);
   };
 
-  const auto complete = [&](std::size_t p) { return state.studies[p].tally.drops() == options.drops.size(); };
-  // Root: merge a result, save the checkpoint, report a complete particle.
+  // Phase 1, the drops. Root: merge each item's result and save the checkpoint.
   const WorkRunner::Absorb absorb = [&](const WorkItem& item, const std::string& result) {
     const CampaignParticle& p = particles.at(item.particle);
     const std::string name = p.source + " drops " + describe(item.drops);
@@ -136,22 +142,50 @@ std::vector<PosesStudy> run_campaign(const std::function<std::vector<CampaignPar
     if (!options.checkpoint_dir.empty())
       write_file_atomically(checkpoint_path(options.checkpoint_dir, p), poses_json(state.studies[item.particle]),
                             FileDurability::synced);
-    if (complete(item.particle) && options.on_particle_done) options.on_particle_done(item.particle, state.studies[item.particle]);
   };
-
-  if (runner.is_root()) {
+  if (runner.is_root() && options.on_start) {
     std::uint64_t left = 0;
     for (const WorkItem& item : items) left += item.drops.size();
-    if (options.on_start) options.on_start(left);
-    for (std::size_t p = 0; p < particles.size(); ++p)
-      if (complete(p) && options.on_particle_done) options.on_particle_done(p, state.studies[p]);
+    options.on_start(left);
   }
-  runner.run(items, work, absorb, options.progress);
+  runner.run(
+      items, [&](const WorkItem& item, std::atomic<std::uint64_t>* progress) { return run_drops(item, progress, false); },
+      absorb, options.progress);
+
+  // Phase 2, the representatives. A pose is shown by the final orientation of its first drop, but drops
+  // stop once their pose is decided; only the first drop of each pose over the whole job needs simulating
+  // to rest, one work item each (finishing them inside every item would cost a full settle per pose per
+  // item).
+  std::vector<WorkItem> representatives;
+  if (runner.is_root())
+    for (std::uint32_t p = 0; p < particles.size(); ++p)
+      for (const PoseTally& t : state.studies[p].tally.poses)
+        if (t.count > 0 && !t.settled) representatives.push_back({p, {t.first_drop, t.first_drop + 1}});
+  const WorkRunner::Absorb settle = [&](const WorkItem& item, const std::string& result) {
+    const PosesStudy one = parse_poses_json(result, particles.at(item.particle).source + " representative");
+    EnsembleTally& tally = state.studies[item.particle].tally;
+    for (std::size_t q = 0; q < one.tally.poses.size() && q < tally.poses.size(); ++q) {
+      if (one.tally.poses[q].count == 0) continue;
+      if (tally.poses[q].first_drop != item.drops.begin)
+        throw Error(particles[item.particle].source + ": drop " + std::to_string(item.drops.begin) +
+                    " ended in another pose when run again");
+      tally.poses[q].orientation = one.tally.poses[q].orientation;
+      tally.poses[q].settled = true;
+    }
+  };
+  runner.run(
+      representatives,
+      [&](const WorkItem& item, std::atomic<std::uint64_t>*) { return run_drops(item, nullptr, true); }, settle,
+      nullptr);
   if (!runner.is_root()) return {};
+  if (options.on_complete) options.on_complete(state.studies);
 
   if (!options.checkpoint_dir.empty()) {
     std::error_code ec;
-    for (const CampaignParticle& p : particles) fs::remove(checkpoint_path(options.checkpoint_dir, p), ec);
+    for (const CampaignParticle& p : particles) {
+      fs::remove(checkpoint_path(options.checkpoint_dir, p), ec);
+      remove_temporaries(checkpoint_path(options.checkpoint_dir, p));
+    }
     fs::remove(options.checkpoint_dir, ec);  // only if empty
   }
   return std::move(state.studies);

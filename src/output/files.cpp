@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <system_error>
+#include <vector>
 
 #include "repose/error.hpp"
 
@@ -42,6 +43,18 @@ void write_file_atomically(const std::string& path, const std::string& content, 
       ::close(fd);
     }
   }
+}
+
+void remove_temporaries(const std::string& path) {
+  namespace fs = std::filesystem;
+  const fs::path target(path);
+  const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  const std::string prefix = target.filename().string() + ".tmp-";
+  std::error_code ec;
+  std::vector<fs::path> stale;
+  for (const auto& entry : fs::directory_iterator(dir, ec))
+    if (entry.path().filename().string().rfind(prefix, 0) == 0) stale.push_back(entry.path());
+  for (const fs::path& p : stale) fs::remove(p, ec);
 }
 
 std::string read_text_file(const std::string& path, std::size_t max_bytes) {

@@ -85,12 +85,11 @@ DropOutcome run_quasi_static_drop(const Particle& particle, const RestLandscape&
   return out;
 }
 
-// A tally plus, per pose, whether its first drop still needs a full run for its final orientation.
+// The tally of a block of drops.
 struct PartialTally {
   EnsembleTally tally;
-  std::vector<bool> first_decided_early;
 
-  explicit PartialTally(std::size_t poses) : first_decided_early(poses, false) { tally.poses.resize(poses); }
+  explicit PartialTally(std::size_t poses) { tally.poses.resize(poses); }
 
   void add(std::uint64_t drop, const DropOutcome& outcome) {
     ++tally.status_counts[static_cast<int>(outcome.status)];
@@ -102,7 +101,7 @@ struct PartialTally {
     if (drop < pose.first_drop) {
       pose.first_drop = drop;
       pose.orientation = outcome.orientation;
-      first_decided_early[outcome.pose] = outcome.decided_early;
+      pose.settled = !outcome.decided_early;
     }
   }
 
@@ -118,7 +117,7 @@ struct PartialTally {
       if (theirs.first_drop < ours.first_drop) {
         ours.first_drop = theirs.first_drop;
         ours.orientation = theirs.orientation;
-        first_decided_early[p] = other.first_decided_early[p];
+        ours.settled = theirs.settled;
       }
     }
   }
@@ -182,9 +181,9 @@ EnsembleTally run_ensemble(const Particle& particle, const RestLandscape& landsc
   });
 
   // A pose's representative is its first drop's final orientation; if that drop stopped early, finish it.
-  for (std::size_t p = 0; p < catalog.poses.size(); ++p) {
+  for (std::size_t p = 0; p < catalog.poses.size() && options.finish_representatives; ++p) {
     PoseTally& pose = total.tally.poses[p];
-    if (pose.count == 0 || !total.first_decided_early[p]) continue;
+    if (pose.count == 0 || pose.settled) continue;
     const DropOutcome full = run_dynamic_drop(particle, landscape, catalog, options.params,
                                               drop_orientation(options.seed, pose.first_drop), false);
     // Should the full run end elsewhere (it must not, by the energy argument), fall back to the start
@@ -193,6 +192,7 @@ EnsembleTally run_ensemble(const Particle& particle, const RestLandscape& landsc
                            ? full.orientation
                            : flush_orientation(particle, catalog.poses[p].face,
                                                drop_orientation(options.seed, pose.first_drop));
+    pose.settled = true;
   }
 
   EnsembleTally tally = std::move(total.tally);
@@ -238,6 +238,7 @@ EnsembleTally merge_tallies(const EnsembleTally& a, const EnsembleTally& b) {
     if (b.poses[p].first_drop < m.poses[p].first_drop) {
       m.poses[p].first_drop = b.poses[p].first_drop;
       m.poses[p].orientation = b.poses[p].orientation;
+      m.poses[p].settled = b.poses[p].settled;
     }
   }
   return m;

@@ -148,6 +148,7 @@ std::string poses_json(const PosesStudy& s) {
                      {"barrier", std::isfinite(pose.barrier) ? json(pose.barrier) : json(nullptr)},
                      {"orientation", t.count ? quat_json(t.orientation) : json(nullptr)},
                      {"first_drop", t.count ? json(t.first_drop) : json(nullptr)}});
+    if (t.count && !t.settled) poses.back()["settled"] = false;  // only in the pieces of a larger job
   }
   j["poses"] = poses;
   json status;
@@ -224,6 +225,7 @@ PosesStudy parse_poses_json(const std::string& text, const std::string& name) {
         if (q.size() != 4) throw Error(name + ": orientation needs 4 numbers");
         t.orientation = Quat(q[0], q[1], q[2], q[3]);
         t.first_drop = whole(e.at("first_drop")).get<std::uint64_t>();
+        t.settled = e.value("settled", true);
       }
     }
     const json& status = j.at("status_counts");

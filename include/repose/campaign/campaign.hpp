@@ -53,8 +53,9 @@ struct CampaignOptions {
   std::string checkpoint_dir; ///< empty: no checkpoint (and no resume)
   /// Root only: called once the drops are planned, with the number still to run.
   std::function<void(std::uint64_t remaining)> on_start;
-  /// Root only: a particle's study is complete (possibly straight from the checkpoint).
-  std::function<void(std::size_t particle, const PosesStudy& study)> on_particle_done;
+  /// Root only: every study is complete (one per particle, in input order). Called before the checkpoint is
+  /// removed, so that results written here are on disk before it goes.
+  std::function<void(const std::vector<PosesStudy>& studies)> on_complete;
   std::atomic<std::uint64_t>* progress = nullptr;  ///< root only: finished drops
 };
 

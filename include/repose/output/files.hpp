@@ -15,6 +15,9 @@ enum class FileDurability { normal, synced };
 void write_file_atomically(const std::string& path, const std::string& content,
                            FileDurability durability = FileDurability::normal);
 
+/// Removes what interrupted writes of `path` left behind (its temporary files, `path.tmp-PID`).
+void remove_temporaries(const std::string& path);
+
 /// Reads a whole text file (a result file being merged, for instance). Throws repose::Error ("PATH: cannot
 /// read: reason") if it cannot be opened or is larger than `max_bytes`.
 std::string read_text_file(const std::string& path, std::size_t max_bytes = std::size_t{1} << 30);

@@ -43,6 +43,9 @@ struct EnsembleOptions {
   /// energy is below m·g·(barrier of the pose it is rolling into) — instead of simulating the last, slow
   /// rocking. Exact by energy: the engine never gains energy, so the particle cannot climb out.
   bool decide_early = true;
+  /// Simulate each pose's first drop to rest if it was decided early, for its final orientation. Off for
+  /// the pieces of a larger batch: only the first drop over all pieces needs it (PoseTally::settled).
+  bool finish_representatives = true;
   int threads = 0;                                 ///< 0 = all cores
   std::atomic<std::uint64_t>* progress = nullptr;  ///< if set, incremented once per finished drop
 };
@@ -52,6 +55,9 @@ struct PoseTally {
   std::uint64_t count = 0;
   std::uint64_t first_drop = UINT64_MAX;  ///< lowest drop index that ended in this pose
   Quat orientation = Quat::Identity();    ///< final orientation (body → world) of `first_drop`
+  /// False if `first_drop` was stopped once its pose was decided and not finished (see
+  /// EnsembleOptions::finish_representatives): `orientation` is then where it was stopped, not its rest.
+  bool settled = true;
 };
 
 /// Status counts: index by static_cast<int>(Status) (running is never counted).
