@@ -131,10 +131,17 @@ class MpiRunner final : public WorkRunner {
 
   void run(const std::vector<WorkItem>& items, const Work& work, const Absorb& absorb,
            std::atomic<std::uint64_t>* progress) override {
+    std::exception_ptr failure;
     if (rank_ == 0)
-      serve(items, work, absorb, progress);
+      failure = serve(items, work, absorb, progress);
     else
       work_loop(work);
+    // Every rank waits here until the root is done, so that no message of a later run() can reach the root
+    // while it still serves this one, and learns whether the run succeeded.
+    int ok = failure ? 0 : 1;
+    MPI_Bcast(&ok, 1, MPI_INT, 0, comm_);
+    if (failure) std::rethrow_exception(failure);
+    if (!ok) throw RootFailed{1};
   }
 
  private:
@@ -173,8 +180,9 @@ class MpiRunner final : public WorkRunner {
     }
   }
 
-  void serve(const std::vector<WorkItem>& items, const Work& work, const Absorb& absorb,
-             std::atomic<std::uint64_t>* progress) {
+  // Returns the first error (work on any rank, or absorb), after every rank has stopped.
+  std::exception_ptr serve(const std::vector<WorkItem>& items, const Work& work, const Absorb& absorb,
+                           std::atomic<std::uint64_t>* progress) {
     std::size_t next = 0;
     std::exception_ptr failure;  // the first error; after it no new items are handed out
     const auto next_item = [&]() -> std::optional<WorkItem> {
@@ -230,7 +238,7 @@ class MpiRunner final : public WorkRunner {
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
       }
     }
-    if (failure) std::rethrow_exception(failure);
+    return failure;
   }
 
   MPI_Comm comm_ = MPI_COMM_NULL;

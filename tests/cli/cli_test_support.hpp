@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -25,6 +27,20 @@ inline void expect_bad_input(const CliResult& r, const std::vector<std::string>&
   EXPECT_EQ(r.err.back(), '\n') << r.err;
   EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "more than one line: " << r.err;
   for (const std::string& s : expected) EXPECT_THAT(r.err, ::testing::HasSubstr(s));
+}
+
+/// A whole file ("" if it cannot be read).
+inline std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// The JSON without its timing object, the only part allowed to differ between equivalent runs.
+inline nlohmann::json without_timing(nlohmann::json j) {
+  j.erase("timing");
+  return j;
 }
 
 /// Standard output parsed as JSON, after checking the exit code.

@@ -23,18 +23,8 @@ using ::testing::HasSubstr;
 
 class PosesCli : public repose::test::TempDirTest {};
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// The JSON without its timing object, which is the only part allowed to differ between equivalent runs.
-json without_timing(json j) {
-  j.erase("timing");
-  return j;
-}
+using repose::test::without_timing;
+const auto read = repose::test::read_file;
 
 TEST_F(PosesCli, JsonNamesTheIssueFields) {
   const json j = parse_json(run_cli("poses tetrahedron:edge=1 -n 200 --seed 5 --json"));

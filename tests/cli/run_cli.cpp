@@ -20,7 +20,7 @@ std::string slurp(const std::filesystem::path& p) {
 }
 }  // namespace
 
-CliResult run_cli(const std::string& args) {
+CliResult run_cli(const std::string& args, const std::string& launcher) {
   namespace fs = std::filesystem;
   static int counter = 0;
   const fs::path dir = fs::temp_directory_path() / ("repose_cli_" + std::to_string(::getpid()));
@@ -28,7 +28,7 @@ CliResult run_cli(const std::string& args) {
   const fs::path out = dir / ("out" + std::to_string(counter));
   const fs::path err = dir / ("err" + std::to_string(counter++));
   const std::string cmd =
-      "'" + std::string(REPOSE_CLI) + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
+      launcher + "'" + std::string(REPOSE_CLI) + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
   const int status = std::system(cmd.c_str());
   CliResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

@@ -11,7 +11,8 @@ struct CliResult {
   std::string err;  ///< standard error
 };
 
-/// Runs `repose ARGS` through /bin/sh (ARGS is shell-quoted by the caller).
-CliResult run_cli(const std::string& args);
+/// Runs `LAUNCHER repose ARGS` through /bin/sh (ARGS is shell-quoted by the caller; LAUNCHER is, for
+/// instance, "mpirun -np 2").
+CliResult run_cli(const std::string& args, const std::string& launcher = "");
 
 }  // namespace repose::test

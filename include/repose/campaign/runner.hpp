@@ -22,6 +22,13 @@ struct WorkItem {
   DropRange drops;
 };
 
+/// Raised on a rank other than the root when the root could not start the job (bad input: exit code 2; an
+/// internal error: 1) or a run failed (1). The root raises the error itself; the other ranks should exit
+/// quietly with that code, so that the error is reported once.
+struct RootFailed {
+  int exit_code = 2;
+};
+
 class WorkRunner {
  public:
   /// Runs `item`; increments `progress` (if not null) once per finished drop. Returns the serialised result.
@@ -41,17 +48,11 @@ class WorkRunner {
 
   /// Collective. On the root: runs every item of `items` on some rank (the root included) and absorbs each
   /// result; `progress` (root only, may be null) counts finished drops. On other ranks: runs the items the
-  /// root sends until it says stop. If `work` or `absorb` throws, no new items are handed out, the items
-  /// already running finish, and the root rethrows the first error (other ranks return normally).
+  /// root sends until it says stop. Returns on every rank only once the root is done. If `work` or `absorb`
+  /// throws, no new items are handed out, the items already running finish, the root rethrows the first
+  /// error and the other ranks throw RootFailed.
   virtual void run(const std::vector<WorkItem>& items, const Work& work, const Absorb& absorb,
                    std::atomic<std::uint64_t>* progress) = 0;
-};
-
-/// Raised on a rank other than the root when the root could not start the job (bad input, exit code 2, or
-/// an internal error, 1). The root raises the error itself; the other ranks should exit quietly with that
-/// code, so that the error is reported once.
-struct RootFailed {
-  int exit_code = 2;
 };
 
 /// Collective: runs `prepare` on the root and returns its result on every rank. If it throws, the root
