@@ -6,6 +6,7 @@ packages=(
   g++ cmake make pkg-config git
   libeigen3-dev libcli11-dev nlohmann-json3-dev libqhull-dev libassimp-dev libtbb-dev librandom123-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libopenmpi-dev openmpi-bin  # the MPI runner (mpirun -np K repose poses); builds without it too
   clang libclang-rt-14-dev  # scripts/fuzz.sh: the clang driver and libFuzzer + sanitizer runtimes
   python3 python3-matplotlib
 )

@@ -1,6 +1,9 @@
 // Umbrella header: everything a program embedding repose needs.
 #pragma once
 
+#include "repose/campaign/campaign.hpp"
+#include "repose/campaign/runner.hpp"
+#include "repose/campaign/summary.hpp"
 #include "repose/error.hpp"
 #include "repose/geometry/hull.hpp"
 #include "repose/geometry/mass.hpp"
