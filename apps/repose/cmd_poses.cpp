@@ -3,9 +3,9 @@
 // repose merge FILE...: merges result files of disjoint drop ranges into the result of their union.
 #include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <exception>
 #include <filesystem>
-#include <cstdio>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -132,7 +132,8 @@ CampaignOptions campaign_options(const PosesOptions& o, const CLI::App& sub, int
   s.decide_early = !o.full_settle;
   c.threads = threads;
   c.chunk = o.chunk;
-  if (!o.out_dir.empty()) c.checkpoint_dir = (std::filesystem::path(o.out_dir) / ".repose-checkpoint").string();
+  if (!o.out_dir.empty())
+    c.checkpoint_dir = (std::filesystem::path(o.out_dir) / ".repose-checkpoint").string();
   return c;
 }
 
@@ -147,9 +148,10 @@ int run_poses(const PosesOptions& o, const CLI::App& sub) {
   const auto start = std::chrono::steady_clock::now();
   const std::unique_ptr<WorkRunner> runner = make_runner();
   // Ranks that share a node share its cores.
-  const int threads = o.threads > 0 ? o.threads
-                                    : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) /
-                                                      runner->ranks_on_this_node());
+  const int threads =
+      o.threads > 0
+          ? o.threads
+          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / runner->ranks_on_this_node());
   // Options are checked on every rank alike, but only the root reports a problem.
   CampaignOptions campaign;
   std::exception_ptr bad_options;
@@ -177,7 +179,8 @@ int run_poses(const PosesOptions& o, const CLI::App& sub) {
   };
   // One particle: DIR/poses.json; several: DIR/NAME.poses.json. Written before the checkpoint goes.
   const auto result_base = [&](std::size_t i) {
-    return (std::filesystem::path(o.out_dir) / (particles.size() == 1 ? "poses" : particles[i].name + ".poses"))
+    return (std::filesystem::path(o.out_dir) /
+            (particles.size() == 1 ? "poses" : particles[i].name + ".poses"))
         .string();
   };
   CampaignSummary summary;
@@ -211,7 +214,8 @@ int run_poses(const PosesOptions& o, const CLI::App& sub) {
   }
   std::cout << (o.json ? summary_json(summary) : summary_markdown(summary));
   for (std::size_t i = 0; i < particles.size(); ++i)
-    warn_unrested(particles[i].name + ": ", studies[i].tally.status_counts[2] + studies[i].tally.status_counts[3]);
+    warn_unrested(particles[i].name + ": ",
+                  studies[i].tally.status_counts[2] + studies[i].tally.status_counts[3]);
   return 0;
 }
 
@@ -253,10 +257,11 @@ Command add_poses_command(CLI::App& app) {
   sub->add_flag("--full-settle", o->full_settle,
                 "Simulate every drop to rest instead of stopping once its energy cannot leave its pose");
   sub->add_flag("--no-progress", o->no_progress, "No progress bar (it is shown only on a terminal anyway)");
-  sub->add_option("--out", o->out_dir,
-                  "Write poses.json and poses.csv (several particles: NAME.poses.json/.csv and summary.csv/.md/"
-                  ".json) into this directory, with a checkpoint in DIR/.repose-checkpoint: rerunning the same "
-                  "command after an interruption resumes");
+  sub->add_option(
+      "--out", o->out_dir,
+      "Write poses.json and poses.csv (several particles: NAME.poses.json/.csv and summary.csv/.md/"
+      ".json) into this directory, with a checkpoint in DIR/.repose-checkpoint: rerunning the same "
+      "command after an interruption resumes");
   sub->add_flag("--json", o->json, "Print the JSON result instead of the table");
   return {sub, [o, sub]() { return run_poses(*o, *sub); }};
 }

@@ -35,6 +35,7 @@ class ProgressBar {
     draw();
     std::fputs("\n", stderr);
   }
+
  private:
   void loop() {
     std::unique_lock lock(mutex_);

@@ -93,17 +93,20 @@ std::vector<PosesStudy> run_campaign(const std::function<std::vector<CampaignPar
     if (options.drops.size() == 0) throw Error("no drops to run");
     state = prepare_root(particles, options);
     if (!options.checkpoint_dir.empty()) ensure_output_directory(options.checkpoint_dir);
-    const std::uint64_t chunk = options.chunk ? options.chunk : auto_chunk(options.drops.size(), options.threads);
+    const std::uint64_t chunk =
+        options.chunk ? options.chunk : auto_chunk(options.drops.size(), options.threads);
     items = plan_work(state.remaining, state.cost_per_drop, chunk);
     json j = json::array();
     for (const CampaignParticle& p : particles) j.push_back({p.name, p.source});
     return j.dump();
   });
   if (!runner.is_root())
-    for (const json& p : json::parse(list)) particles.push_back({p.at(0).get<std::string>(), p.at(1).get<std::string>()});
+    for (const json& p : json::parse(list))
+      particles.push_back({p.at(0).get<std::string>(), p.at(1).get<std::string>()});
 
-  const int threads = options.threads > 0 ? options.threads
-                                          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int threads = options.threads > 0
+                          ? options.threads
+                          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   // Any rank: the model of a particle. The last one is kept, since items of one particle mostly follow each
   // other.
   std::uint32_t cached_index = 0;
@@ -140,8 +143,8 @@ std::vector<PosesStudy> run_campaign(const std::function<std::vector<CampaignPar
       throw Error(name + ": " + e.what() + " (ranks computed different results: same binary everywhere?)");
     }
     if (!options.checkpoint_dir.empty())
-      write_file_atomically(checkpoint_path(options.checkpoint_dir, p), poses_json(state.studies[item.particle]),
-                            FileDurability::synced);
+      write_file_atomically(checkpoint_path(options.checkpoint_dir, p),
+                            poses_json(state.studies[item.particle]), FileDurability::synced);
   };
   if (runner.is_root() && options.on_start) {
     std::uint64_t left = 0;
@@ -149,7 +152,10 @@ std::vector<PosesStudy> run_campaign(const std::function<std::vector<CampaignPar
     options.on_start(left);
   }
   runner.run(
-      items, [&](const WorkItem& item, std::atomic<std::uint64_t>* progress) { return run_drops(item, progress, false); },
+      items,
+      [&](const WorkItem& item, std::atomic<std::uint64_t>* progress) {
+        return run_drops(item, progress, false);
+      },
       absorb, options.progress);
 
   // Phase 2, the representatives. A pose is shown by the final orientation of its first drop, but drops
@@ -175,8 +181,8 @@ std::vector<PosesStudy> run_campaign(const std::function<std::vector<CampaignPar
   };
   runner.run(
       representatives,
-      [&](const WorkItem& item, std::atomic<std::uint64_t>*) { return run_drops(item, nullptr, true); }, settle,
-      nullptr);
+      [&](const WorkItem& item, std::atomic<std::uint64_t>*) { return run_drops(item, nullptr, true); },
+      settle, nullptr);
   if (!runner.is_root()) return {};
   if (options.on_complete) options.on_complete(state.studies);
 

@@ -37,6 +37,13 @@ Row row_of(const PosesStudy& s) {
   return r;
 }
 
+// A CSV field in quotes, quotes inside doubled (RFC 4180): sources may hold commas (shape specs) or quotes.
+std::string quoted(const std::string& text) {
+  std::string out = "\"";
+  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + '"';
+}
+
 void check(const CampaignSummary& s) {
   if (s.studies.size() != s.particles.size() || s.result_files.size() != s.particles.size())
     throw Error("campaign summary: one study and one result file per particle needed");
@@ -53,8 +60,9 @@ std::string summary_csv(const CampaignSummary& summary) {
   for (std::size_t i = 0; i < summary.particles.size(); ++i) {
     const PosesStudy& s = summary.studies[i];
     const Row r = row_of(s);
-    out << summary.particles[i].name << ",\"" << summary.particles[i].source << "\"," << summary.result_files[i]
-        << ',' << s.hull_faces << ',' << (s.smooth ? 1 : 0) << ',' << r.n << ',' << r.poses_seen << ',';
+    out << summary.particles[i].name << ',' << quoted(summary.particles[i].source) << ','
+        << summary.result_files[i] << ',' << s.hull_faces << ',' << (s.smooth ? 1 : 0) << ',' << r.n << ','
+        << r.poses_seen << ',';
     if (r.top >= 0)
       out << r.top << ',' << r.probability << ',' << r.ci[0] << ',' << r.ci[1] << ',' << r.down.x() << ','
           << r.down.y() << ',' << r.down.z();

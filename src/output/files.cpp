@@ -36,7 +36,8 @@ void write_file_atomically(const std::string& path, const std::string& content, 
   }
   if (durability == FileDurability::synced) {
     // The rename itself is durable once the directory is synced.
-    const std::string dir = fs::path(path).parent_path().empty() ? "." : fs::path(path).parent_path().string();
+    const std::string dir =
+        fs::path(path).parent_path().empty() ? "." : fs::path(path).parent_path().string();
     const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
     if (fd >= 0) {
       ::fsync(fd);

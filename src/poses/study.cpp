@@ -62,18 +62,19 @@ std::vector<int> report_order(const PosesStudy& study) {
   return order;
 }
 
-PosesStudy prepare_study(const Particle& particle, const RestLandscape& landscape, const StudySettings& settings) {
+PosesStudy prepare_study(const Particle& particle, const RestLandscape& landscape,
+                         const StudySettings& settings) {
   if (!std::isfinite(settings.damping_ratio) || settings.damping_ratio < 0)
     throw Error("the damping ratio must be a finite number >= 0");
   if (!std::isfinite(settings.persistence)) throw Error("the persistence must be a finite number");
   SettleParams params = settings.params;
   if (!settings.damping_given) params.damping = 0;
   validate(params);
-  const bool smooth =
-      params.smooth == SmoothMode::on || (params.smooth == SmoothMode::automatic && is_smooth_surface(particle));
+  const bool smooth = params.smooth == SmoothMode::on ||
+                      (params.smooth == SmoothMode::automatic && is_smooth_surface(particle));
   if (!settings.damping_given)
-    params.damping =
-        settings.damping_ratio * particle.mass.mass * std::sqrt(params.gravity * std::pow(particle.length, 3));
+    params.damping = settings.damping_ratio * particle.mass.mass *
+                     std::sqrt(params.gravity * std::pow(particle.length, 3));
   const double persistence = settings.persistence >= 0 ? settings.persistence * particle.length
                                                        : default_persistence(particle, smooth);
   PosesStudy study;

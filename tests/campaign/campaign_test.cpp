@@ -93,7 +93,8 @@ class Campaign : public ::testing::Test {
     options_.chunk = kDrops / 12;
   }
   void TearDown() override { fs::remove_all(dir_); }
-  std::vector<CampaignParticle> particles_ = {{"box", "box:x=1,y=2,z=3"}, {"prism", "cylinder:r=0.5,h=0.8,n=6"}};
+  std::vector<CampaignParticle> particles_ = {{"box", "box:x=1,y=2,z=3"},
+                                              {"prism", "cylinder:r=0.5,h=0.8,n=6"}};
   CampaignOptions options_;
   fs::path dir_;
 };

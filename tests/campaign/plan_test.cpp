@@ -60,10 +60,10 @@ TEST(PlanWork, CoversEveryRemainingDropExactlyOnceCostliestFirst) {
 }
 
 TEST(AutoChunk, StaysWithinItsBounds) {
-  EXPECT_EQ(auto_chunk(100, 2), 100u);                 // never more than the drops
-  EXPECT_EQ(auto_chunk(10'000, 2), 256u);              // at least 128 drops per thread
-  EXPECT_EQ(auto_chunk(1'000'000, 2), 15'625u);        // about 64 items
-  EXPECT_EQ(auto_chunk(100'000'000, 2), 65'536u);      // at most 65,536
+  EXPECT_EQ(auto_chunk(100, 2), 100u);             // never more than the drops
+  EXPECT_EQ(auto_chunk(10'000, 2), 256u);          // at least 128 drops per thread
+  EXPECT_EQ(auto_chunk(1'000'000, 2), 15'625u);    // about 64 items
+  EXPECT_EQ(auto_chunk(100'000'000, 2), 65'536u);  // at most 65,536
   EXPECT_EQ(auto_chunk(1, 8), 1u);
 }
 

@@ -103,11 +103,11 @@ TEST_F(CampaignCli, ManyParticlesGiveOneResultEachAndASummary) {
   const std::string common = " -n 300 --seed 5 --chunk 70 --out " + out.string();
   const json summary = parse_json(
       run_cli("poses " + kCube + " --manifest " + (dir_ / "list.txt").string() + common + " --json"));
-  EXPECT_EQ(entries(out), (std::vector<std::string>{"box_x=1_y=2_z=3.poses.csv", "box_x=1_y=2_z=3.poses.json",
-                                                    "cube_ascii.poses.csv", "cube_ascii.poses.json",
-                                                    "summary.csv", "summary.json", "summary.md",
-                                                    "tetrahedron_edge=1.poses.csv",
-                                                    "tetrahedron_edge=1.poses.json"}));
+  EXPECT_EQ(entries(out),
+            (std::vector<std::string>{"box_x=1_y=2_z=3.poses.csv", "box_x=1_y=2_z=3.poses.json",
+                                      "cube_ascii.poses.csv", "cube_ascii.poses.json", "summary.csv",
+                                      "summary.json", "summary.md", "tetrahedron_edge=1.poses.csv",
+                                      "tetrahedron_edge=1.poses.json"}));
   ASSERT_EQ(summary["particles"].size(), 3u);
   EXPECT_EQ(summary["particles"][0]["name"], "cube_ascii");
   EXPECT_EQ(summary["particles"][1]["source"], "box:x=1,y=2,z=3");
@@ -116,11 +116,12 @@ TEST_F(CampaignCli, ManyParticlesGiveOneResultEachAndASummary) {
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);
   EXPECT_THAT(read_file(out / "summary.md"), HasSubstr("| tetrahedron_edge=1 | 4 | 300 |"));
   // Each particle's file is exactly what a run of that particle alone writes.
-  for (const std::string& source : {kCube, std::string("box:x=1,y=2,z=3"), std::string("tetrahedron:edge=1")}) {
+  for (const std::string& source :
+       {kCube, std::string("box:x=1,y=2,z=3"), std::string("tetrahedron:edge=1")}) {
     const json alone = parse_json(run_cli("poses " + source + " -n 300 --seed 5 --json"));
-    const std::string name = source == kCube ? "cube_ascii" : source == "tetrahedron:edge=1"
-                                                                  ? "tetrahedron_edge=1"
-                                                                  : "box_x=1_y=2_z=3";
+    const std::string name = source == kCube                  ? "cube_ascii"
+                             : source == "tetrahedron:edge=1" ? "tetrahedron_edge=1"
+                                                              : "box_x=1_y=2_z=3";
     EXPECT_EQ(result(out / (name + ".poses.json")).dump(), without_timing(alone).dump()) << source;
     EXPECT_EQ(summary["particles"][name == "cube_ascii" ? 0 : name == "box_x=1_y=2_z=3" ? 1 : 2]["n"], 300);
   }
@@ -202,7 +203,8 @@ TEST_F(CampaignCli, RanksAndThreadsDoNotChangeTheResult) {
 
 TEST_F(CampaignCli, ManyParticlesAcrossRanksMatchOneProcess) {
   const std::string particles = kCube + " box:x=1,y=2,z=3 cylinder:r=0.5,h=1,n=24";
-  const std::string args = "poses " + particles + " -n 250 --seed 3 --chunk 40 --threads 1 --no-progress --out ";
+  const std::string args =
+      "poses " + particles + " -n 250 --seed 3 --chunk 40 --threads 1 --no-progress --out ";
   ASSERT_EQ(run_cli(args + (dir_ / "one").string()).exit_code, 0);
   const auto r = run_cli(args + (dir_ / "three").string(), mpirun(3));
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -223,7 +225,8 @@ TEST_F(CampaignCli, MpiJobKilledMidwayResumesOnAnotherRankCount) {
   const fs::path out = dir_ / "out";
   const pid_t pid = spawn(mpirun(2) + repose_command(args + " --out " + out.string() + " >/dev/null 2>&1"));
   ASSERT_GT(pid, 0);
-  ASSERT_TRUE(wait_for_file(out / ".repose-checkpoint/box_x=1_y=1_z=1.json", pid)) << "no checkpoint appeared";
+  ASSERT_TRUE(wait_for_file(out / ".repose-checkpoint/box_x=1_y=1_z=1.json", pid))
+      << "no checkpoint appeared";
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   // mpirun passes SIGTERM on to every rank and waits for them (as SLURM's scancel does).
   ASSERT_EQ(::kill(pid, SIGTERM), 0);

@@ -27,8 +27,8 @@ CliResult run_cli(const std::string& args, const std::string& launcher) {
   fs::create_directories(dir);
   const fs::path out = dir / ("out" + std::to_string(counter));
   const fs::path err = dir / ("err" + std::to_string(counter++));
-  const std::string cmd =
-      launcher + "'" + std::string(REPOSE_CLI) + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
+  const std::string cmd = launcher + "'" + std::string(REPOSE_CLI) + "' " + args + " >'" + out.string() +
+                          "' 2>'" + err.string() + "'";
   const int status = std::system(cmd.c_str());
   CliResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

@@ -47,10 +47,10 @@ std::vector<WorkItem> plan_work(const std::vector<std::vector<DropRange>>& remai
 
 struct CampaignOptions {
   StudySettings settings;
-  DropRange drops;            ///< the same drop indices for every particle
-  int threads = 0;            ///< threads per rank; 0 = all cores
-  std::uint64_t chunk = 0;    ///< drops per work item; 0 = auto_chunk
-  std::string checkpoint_dir; ///< empty: no checkpoint (and no resume)
+  DropRange drops;             ///< the same drop indices for every particle
+  int threads = 0;             ///< threads per rank; 0 = all cores
+  std::uint64_t chunk = 0;     ///< drops per work item; 0 = auto_chunk
+  std::string checkpoint_dir;  ///< empty: no checkpoint (and no resume)
   /// Root only: called once the drops are planned, with the number still to run.
   std::function<void(std::uint64_t remaining)> on_start;
   /// Root only: every study is complete (one per particle, in input order). Called before the checkpoint is

@@ -50,7 +50,8 @@ struct StudySettings {
 /// The study of `particle` under `settings` with nothing counted yet (a tally of zero drops over its
 /// catalogue): the header every result of that particle and those settings shares. Throws repose::Error for
 /// invalid settings.
-PosesStudy prepare_study(const Particle& particle, const RestLandscape& landscape, const StudySettings& settings);
+PosesStudy prepare_study(const Particle& particle, const RestLandscape& landscape,
+                         const StudySettings& settings);
 
 /// The options run_ensemble needs to add drops `drops` to a study prepared by prepare_study.
 EnsembleOptions ensemble_options(const PosesStudy& study, DropRange drops, int threads);
