@@ -140,6 +140,10 @@ CampaignOptions campaign_options(const PosesOptions& o, const CLI::App& sub, int
 std::unique_ptr<WorkRunner> make_runner() {
 #ifdef REPOSE_HAVE_MPI
   if (launched_by_mpi()) return make_mpi_runner();
+#else
+  if (launched_by_mpi())
+    std::cerr << "repose: warning: this repose was built without MPI (REPOSE_MPI=OFF): every rank runs the "
+                 "whole job\n";
 #endif
   return std::make_unique<LocalRunner>();
 }

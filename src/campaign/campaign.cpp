@@ -1,7 +1,11 @@
 // Running a job of work items and merging their results: see campaign.hpp.
 #include "repose/campaign/campaign.hpp"
 
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
+#include <exception>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -47,30 +51,50 @@ struct RootState {
   std::vector<double> cost_per_drop;
 };
 
-RootState prepare_root(const std::vector<CampaignParticle>& particles, const CampaignOptions& options) {
-  RootState state;
-  for (const CampaignParticle& p : particles) {
-    const std::unique_ptr<ParticleModel> model = load_model(p, options.settings);
-    PosesStudy study = model->header;
-    std::vector<DropRange> left{options.drops};
-    const std::string path = options.checkpoint_dir.empty() ? "" : checkpoint_path(options.checkpoint_dir, p);
-    std::error_code ec;
-    if (!path.empty() && fs::exists(path, ec)) {
-      const PosesStudy saved = parse_poses_json(read_text_file(path), path);
-      try {
-        study = merge_studies(study, saved);
-        left = remaining_ranges(options.drops, saved.tally.ranges);
-      } catch (const Error& e) {
-        throw Error(path + ": checkpoint of a different run (" + e.what() +
-                    "); delete it to start over, or use another output directory");
-      }
+// One particle's part of the root's preparation: its study so far (from the checkpoint) and what is left.
+void prepare_particle(const CampaignParticle& p, const CampaignOptions& options, PosesStudy& study,
+                      std::vector<DropRange>& left, double& cost_per_drop) {
+  const std::unique_ptr<ParticleModel> model = load_model(p, options.settings);
+  study = model->header;
+  left = {options.drops};
+  const std::string path = options.checkpoint_dir.empty() ? "" : checkpoint_path(options.checkpoint_dir, p);
+  std::error_code ec;
+  if (!path.empty() && fs::exists(path, ec)) {
+    const PosesStudy saved = parse_poses_json(read_text_file(path), path);
+    try {
+      study = merge_studies(study, saved);
+      left = remaining_ranges(options.drops, saved.tally.ranges);
+    } catch (const Error& e) {
+      throw Error(path + ": checkpoint of a different run (" + e.what() +
+                  "); delete it to start over, or use another output directory");
     }
-    state.studies.push_back(std::move(study));
-    state.remaining.push_back(std::move(left));
-    // The engine's cost per step grows with the hull's size; smooth particles also take more steps.
-    const double hull = static_cast<double>(model->particle.hull.vertices.size());
-    state.cost_per_drop.push_back(hull * (model->header.smooth ? 4.0 : 1.0));
   }
+  // The engine's cost per step grows with the hull's size; smooth particles also take more steps.
+  const double hull = static_cast<double>(model->particle.hull.vertices.size());
+  cost_per_drop = hull * (model->header.smooth ? 4.0 : 1.0);
+}
+
+// The particles are prepared in parallel (a library of large scans loads much faster); the error reported is
+// that of the first bad particle in input order, whatever the threads did.
+RootState prepare_root(const std::vector<CampaignParticle>& particles, const CampaignOptions& options) {
+  const std::size_t n = particles.size();
+  RootState state;
+  state.studies.resize(n);
+  state.remaining.resize(n);
+  state.cost_per_drop.resize(n);
+  std::vector<std::exception_ptr> errors(n);
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
+      try {
+        prepare_particle(particles[i], options, state.studies[i], state.remaining[i], state.cost_per_drop[i]);
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    });
+  });
+  for (const std::exception_ptr& error : errors)
+    if (error) std::rethrow_exception(error);
   return state;
 }
 
@@ -170,6 +194,7 @@ std::vector<PosesStudy> run_campaign(const std::function<std::vector<CampaignPar
   const WorkRunner::Absorb settle = [&](const WorkItem& item, const std::string& result) {
     const PosesStudy one = parse_poses_json(result, particles.at(item.particle).source + " representative");
     EnsembleTally& tally = state.studies[item.particle].tally;
+    tally.seconds += one.tally.seconds;  // the time it took counts towards the study's
     for (std::size_t q = 0; q < one.tally.poses.size() && q < tally.poses.size(); ++q) {
       if (one.tally.poses[q].count == 0) continue;
       if (tally.poses[q].first_drop != item.drops.begin)

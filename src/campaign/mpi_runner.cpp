@@ -9,7 +9,6 @@
 #include <chrono>
 #include <climits>
 #include <condition_variable>
-#include <cstdlib>
 #include <exception>
 #include <mutex>
 #include <optional>
@@ -248,13 +247,6 @@ class MpiRunner final : public WorkRunner {
 };
 
 }  // namespace
-
-bool launched_by_mpi() {
-  for (const char* name :
-       {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE", "MV2_COMM_WORLD_RANK"})
-    if (std::getenv(name) != nullptr) return true;
-  return false;
-}
 
 std::unique_ptr<WorkRunner> make_mpi_runner() { return std::make_unique<MpiRunner>(); }
 

@@ -1,10 +1,18 @@
 #include "repose/campaign/runner.hpp"
 
+#include <cstdlib>
 #include <exception>
 
 #include "repose/error.hpp"
 
 namespace repose {
+
+bool launched_by_mpi() {
+  for (const char* name :
+       {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE", "MV2_COMM_WORLD_RANK"})
+    if (std::getenv(name) != nullptr) return true;
+  return false;
+}
 
 std::string prepare_on_root(WorkRunner& runner, const std::function<std::string()>& prepare) {
   // The first character says how the root fared: '0' success, else the exit code the others should use.

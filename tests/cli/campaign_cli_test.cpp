@@ -251,7 +251,12 @@ TEST_F(CampaignCli, BadInputUnderMpiIsReportedOnce) {
 
 #else
 
-TEST(CampaignCliMpi, DISABLED_NeedsTheMpiBuild) {}
+// A build without MPI started by mpirun cannot share the work: every rank would run the whole job. It says so.
+TEST_F(CampaignCli, WithoutMpiALaunchedRankWarnsThatItRunsTheWholeJob) {
+  const auto r = run_cli("poses box:x=1,y=1,z=1 -n 5 --json", "OMPI_COMM_WORLD_SIZE=2 ");
+  EXPECT_EQ(parse_json(r)["n"], 5);
+  EXPECT_THAT(r.err, HasSubstr("built without MPI"));
+}
 
 #endif
 

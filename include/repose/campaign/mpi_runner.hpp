@@ -12,9 +12,6 @@
 
 namespace repose {
 
-/// True if this process was started by an MPI launcher (mpirun, mpiexec, srun): its environment names a rank.
-bool launched_by_mpi();
-
 /// Initialises MPI and returns a runner over all ranks of MPI_COMM_WORLD; MPI is finalised when the runner
 /// is destroyed (one runner per process). Throws repose::Error if MPI cannot give MPI_THREAD_FUNNELED.
 std::unique_ptr<WorkRunner> make_mpi_runner();

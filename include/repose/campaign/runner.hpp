@@ -55,6 +55,10 @@ class WorkRunner {
                    std::atomic<std::uint64_t>* progress) = 0;
 };
 
+/// True if this process was started by an MPI launcher (mpirun, mpiexec, srun): its environment names a rank
+/// (OMPI_COMM_WORLD_SIZE, PMIX_RANK, PMI_RANK, PMI_SIZE or MV2_COMM_WORLD_RANK).
+bool launched_by_mpi();
+
 /// Collective: runs `prepare` on the root and returns its result on every rank. If it throws, the root
 /// rethrows and every other rank throws RootFailed.
 std::string prepare_on_root(WorkRunner& runner, const std::function<std::string()>& prepare);
