@@ -47,12 +47,8 @@ PosesStudy single_run(const std::string& source, const StudySettings& settings, 
 }
 
 // Finishes the items in a scrambled order, as ranks that run at different speeds would.
-class ScrambledRunner final : public WorkRunner {
+class ScrambledRunner final : public LocalRunner {
  public:
-  int rank() const override { return 0; }
-  int ranks() const override { return 1; }
-  int ranks_on_this_node() const override { return 1; }
-  std::string broadcast(const std::string& value) override { return value; }
   void run(const std::vector<WorkItem>& items, const Work& work, const Absorb& absorb,
            std::atomic<std::uint64_t>* progress) override {
     std::vector<WorkItem> order = items;
@@ -62,13 +58,9 @@ class ScrambledRunner final : public WorkRunner {
 };
 
 // Dies after `limit` items, as a killed job would.
-class InterruptedRunner final : public WorkRunner {
+class InterruptedRunner final : public LocalRunner {
  public:
   explicit InterruptedRunner(std::size_t limit) : limit_(limit) {}
-  int rank() const override { return 0; }
-  int ranks() const override { return 1; }
-  int ranks_on_this_node() const override { return 1; }
-  std::string broadcast(const std::string& value) override { return value; }
   void run(const std::vector<WorkItem>& items, const Work& work, const Absorb& absorb,
            std::atomic<std::uint64_t>* progress) override {
     for (std::size_t k = 0; k < items.size(); ++k) {

@@ -63,8 +63,9 @@ bool launched_by_mpi();
 /// rethrows and every other rank throws RootFailed.
 std::string prepare_on_root(WorkRunner& runner, const std::function<std::string()>& prepare);
 
-/// Runs every item in this process, in the given order.
-class LocalRunner final : public WorkRunner {
+/// Runs every item in this process, in the given order. (Not final: a test can override run() to finish items
+/// in another order or to stop midway.)
+class LocalRunner : public WorkRunner {
  public:
   int rank() const override { return 0; }
   int ranks() const override { return 1; }
