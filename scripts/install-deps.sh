@@ -8,7 +8,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin  # the MPI runner (mpirun -np K repose poses); builds without it too
   clang libclang-rt-14-dev  # scripts/fuzz.sh: the clang driver and libFuzzer + sanitizer runtimes
-  python3 python3-matplotlib
+  python3 python3-matplotlib python3-scipy  # scipy: independent ODE reference in the physics tests
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -75,6 +75,11 @@ constexpr int kStallLimit = 20;  // after this many near-empty steps, contact ch
 // A slow smooth particle (heavy damping creeps) rests by its energy only once its bottom facet is this close
 // to flush (rad), so the rest pose is where the motion was going, not a jump to it.
 constexpr double kSmoothRestTilt = 0.01;
+// An edge balance (no motion, the centre of mass over the edge within 1e-9·L) is an unstable equilibrium,
+// not a rest: the particle is turned about the edge until its centre of mass is this far (× L) beyond it and
+// falls from there. Ten times the touching tolerance, so round-off never puts it back on the balance; the
+// fall from an offset δ takes about ln(d/δ)/λ (d: centre of mass to edge, λ: the inverted pendulum's rate).
+constexpr double kBalanceOffset = 1e-8;
 }  // namespace
 
 struct Settler::Impl {
@@ -377,9 +382,7 @@ struct Settler::Impl {
       if (!finishing && paper_stability_test(contact_points, g)) finishing = true;
     }
     choose_support(fit, g, omega, com_velocity);
-    if (!smooth && touching_points_hold(g, true) &&
-        kinetic_energy() < 1e-9 * body.mass * params.gravity * length && come_to_rest())
-      return;
+    if (!smooth && kinetic_energy() < 1e-9 * body.mass * params.gravity * length) tip_off_edge_balance(g);
     if (trace)
       std::fprintf(stderr,
                    "t=%.9g type=%s contact=%zu touching=%zu finishing=%d support=%d line=%d axis=%g,%g,%g "
@@ -409,15 +412,44 @@ struct Settler::Impl {
     return sim::convex_hull_2d(pts, touch_tol);
   }
 
-  // Static equilibrium on the wall: the touching points surround the centre of mass's projection (or it lies
-  // on their segment, a balanced edge).
-  // A segment (two or more collinear touching points) holds only a particle that has no motion left to roll
-  // over it: one passing over an edge has its centre of mass above the edge for an instant too.
-  bool touching_points_hold(const Vec2& g, bool segments_too = false) const {
-    if (touching.size() < 2) return false;
+  // Static equilibrium on the wall: the touching points surround the centre of mass's projection.
+  bool touching_points_hold(const Vec2& g) const {
+    if (touching.size() < 3) return false;
     const std::vector<Vec2> poly = touching_polygon();
-    const std::size_t needed = segments_too ? 2 : 3;
-    return poly.size() >= needed && sim::polygon_margin(poly, g) > -touch_tol;
+    return poly.size() >= 3 && sim::polygon_margin(poly, g) > -touch_tol;
+  }
+
+  // With no motion left on a segment of touching points (an edge) whose line passes within touch_tol of the
+  // centre of mass's projection, the particle is balanced: the weight's moment is round-off. That is an
+  // unstable equilibrium, not a rest. Rule (docs/method.md): turn the particle about the edge until its
+  // centre of mass is kBalanceOffset·L beyond it, on the side it leans to by round-off (the left of the
+  // edge's direction when exactly on it), with no motion; the run then integrates the fall, and its time.
+  void tip_off_edge_balance(const Vec2& g) {
+    const std::vector<Vec2> poly = touching_polygon();
+    if (poly.size() != 2) return;
+    const Vec2 a = poly[0], edge = poly[1] - poly[0];
+    const Vec2 e = edge.normalized();
+    const double along = (g - a).dot(e);
+    const double lean = e.x() * (g.y() - a.y()) - e.y() * (g.x() - a.x());  // left of the edge: positive
+    if (along < -touch_tol || along > edge.norm() + touch_tol || std::abs(lean) > touch_tol) return;
+    const int pivot_vertex = nearest_touching(a);
+    const Vec3 pivot = world_vertex(pivot_vertex);
+    const Vec3 axis(e.x(), e.y(), 0.0);
+    const double height = com.z() - pivot.z();
+    const double d = std::hypot(height, lean);
+    const double target = (lean < 0 ? -1.0 : 1.0) * kBalanceOffset * length;
+    // A rotation by −α about the edge direction moves the centre of mass to the left by d·sin α.
+    const double alpha = std::asin(target / d) - std::atan2(lean, height);
+    const Quat turn(Eigen::AngleAxisd(-alpha, axis));
+    q = (turn * q).normalized();
+    support = {pivot, particle.hull.vertices[pivot_vertex], true, axis};
+    support_vertex = pivot_vertex;
+    reach_radius = hull_radius + support.body.norm();
+    com = sim::com_position(support, q);
+    rot = {q, Vec3::Zero(), Vec3::Zero()};
+    heights(q, z);
+    max_penetration = std::max(max_penetration, -*std::min_element(z.begin(), z.end()));
+    remember_axis(rot.omega);
   }
 
   // §2.4: a contact element (a hull face all of whose vertices are contacts) hit by the downward ray from the

@@ -1,0 +1,390 @@
+#!/usr/bin/env python3
+"""Mutation testing of repose: plant one realistic bug at a time in src/, rebuild, run the suite, and report
+which test killed each mutant or that none did. See docs/testing.md; operators in operators.py.
+
+The work happens in a copy of the source tree (BUILD/tree) with its own build directory (BUILD/build), so the
+working tree is never modified and can be edited while a run goes on. Results are appended to
+BUILD/results.jsonl as they come, so a stopped run resumes where it was; the Markdown table is written at the
+end (and with --report alone).
+
+A mutant whose object file is byte-identical to the original's is equivalent by construction (trivial
+compiler equivalence) and is not tested. A mutant that does not compile is "stillborn" and not counted. A
+test that runs longer than max(60 s, 5 x its time on the unmutated code) kills the mutant ("timeout"):
+mutation testing counts a hang as a detected bug, and the suite's own time bounds would catch it too.
+"""
+
+import argparse
+import hashlib
+import json
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from operators import OPERATORS  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[2]
+# Never run: the pinned hash of the engine's output fails on any change, right or wrong; the package tests
+# install and build a consumer (minutes, and they test packaging, not results).
+DEFAULT_EXCLUDE = r"^Determinism\.FixedBatchHashesToTheGoldenValue$|^package\."
+SKIP_LINE = re.compile(r"^\s*(#|//)|\bthrow\b|\bError\(|fprintf|std::cout|std::cerr|static_assert|\btrace\b")
+
+
+def blank_literals_and_comments(line):
+    """The line with string/char literal contents and a trailing // comment replaced by spaces (same length),
+    so operators never match inside them."""
+    out, i, quote = [], 0, None
+    while i < len(line):
+        c = line[i]
+        if quote:
+            if c == "\\":
+                out.append("  ")
+                i += 2
+                continue
+            out.append(c if c == quote else " ")
+            if c == quote:
+                quote = None
+        elif c in "\"'":
+            quote = c
+            out.append(c)
+        elif line.startswith("//", i):
+            out.append(" " * (len(line) - i))
+            break
+        else:
+            out.append(c)
+        i += 1
+    return "".join(out)[: len(line)]
+
+
+def mutants_of(rel_path):
+    """Every mutant of one source file: dicts with a stable key (file, operator, line text, occurrence)."""
+    lines = (ROOT / rel_path).read_text().split("\n")
+    result, in_block_comment = [], False
+    for number, line in enumerate(lines, start=1):
+        stripped = line.strip()
+        if in_block_comment:
+            in_block_comment = "*/" not in stripped
+            continue
+        if stripped.startswith("/*"):
+            in_block_comment = "*/" not in stripped
+            continue
+        if SKIP_LINE.search(line):
+            continue
+        masked = blank_literals_and_comments(line)
+        for name, pattern, replacement in OPERATORS:
+            for occurrence, match in enumerate(re.finditer(pattern, masked)):
+                new_text = match.expand(replacement) if isinstance(replacement, str) else replacement(match)
+                mutated = line[: match.start()] + new_text + line[match.end() :]
+                if mutated == line:
+                    continue
+                digest = hashlib.sha1(f"{rel_path}|{name}|{line.strip()}|{occurrence}".encode()).hexdigest()
+                result.append({"key": digest[:12], "file": rel_path, "line": number, "operator": name,
+                               "original": line.strip(), "mutated": mutated.strip(), "text": mutated})
+    return result
+
+
+def sampled(mutant, fraction, seed):
+    """Deterministic sample: a mutant is in if the hash of (seed, key) falls below the fraction."""
+    if fraction >= 1:
+        return True
+    h = int(hashlib.sha1(f"{seed}|{mutant['key']}".encode()).hexdigest()[:8], 16)
+    return h < fraction * 0x100000000
+
+
+def module_of(rel_path):
+    parts = Path(rel_path).parts
+    return "/".join(parts[:2]) if len(parts) > 2 else parts[0]
+
+
+# ---- the copy of the tree and its build -------------------------------------------------------------------
+
+
+def sync_tree(tree):
+    """Copies the working tree's tracked and untracked (not ignored) files into `tree` when they differ."""
+    listed = subprocess.run(["git", "ls-files", "-co", "--exclude-standard", "-z"], cwd=ROOT,
+                            capture_output=True, check=True).stdout.decode().split("\0")
+    for rel in filter(None, listed):
+        src, dst = ROOT / rel, tree / rel
+        if not src.is_file():
+            continue
+        data = src.read_bytes()
+        if dst.is_file() and dst.read_bytes() == data:
+            continue
+        dst.parent.mkdir(parents=True, exist_ok=True)
+        dst.write_bytes(data)
+        shutil.copymode(src, dst)
+
+
+def build(build_dir, log):
+    with open(log, "w") as out:
+        return subprocess.run(["cmake", "--build", str(build_dir), "-j", str(os.cpu_count() or 2)],
+                              stdout=out, stderr=subprocess.STDOUT).returncode == 0
+
+
+def object_file(build_dir, rel_path):
+    """The object file CMake makes of src/DIR/FILE.cpp for the library target."""
+    rel = Path(rel_path).relative_to("src")
+    for target in ("repose.dir", "repose_mpi.dir"):
+        candidate = build_dir / "src" / "CMakeFiles" / target / (str(rel) + ".o")
+        if candidate.exists():
+            return candidate
+    return None
+
+
+def list_tests(build_dir, exclude):
+    info = json.loads(subprocess.run(["ctest", "--show-only=json-v1"], cwd=build_dir, capture_output=True,
+                                     check=True).stdout)
+    tests = []
+    for t in info["tests"]:
+        if re.search(exclude, t["name"]) or "command" not in t:
+            continue
+        props = {p["name"]: p["value"] for p in t.get("properties", [])}
+        env = dict(os.environ)
+        for item in props.get("ENVIRONMENT", []):
+            k, _, v = item.partition("=")
+            env[k] = v
+        tests.append({"name": t["name"], "command": t["command"],
+                      "cwd": props.get("WORKING_DIRECTORY", str(build_dir)), "env": env})
+    return tests
+
+
+def run_tests(tests, order, timeouts, jobs, stop_on_failure=True):
+    """Runs the tests in `order`, `jobs` at a time. Returns (first failing test or None, how it failed,
+    {name: seconds})."""
+    pending, running, durations = list(order), {}, {}
+    failed, how = None, None
+    while (pending and not (failed and stop_on_failure)) or running:
+        while pending and len(running) < jobs and not (failed and stop_on_failure):
+            name = pending.pop(0)
+            t = tests[name]
+            proc = subprocess.Popen(t["command"], cwd=t["cwd"], env=t["env"], stdout=subprocess.DEVNULL,
+                                    stderr=subprocess.DEVNULL, start_new_session=True)
+            running[name] = (proc, time.monotonic())
+        time.sleep(0.01)
+        for name, (proc, start) in list(running.items()):
+            elapsed = time.monotonic() - start
+            rc = proc.poll()
+            timed_out = rc is None and elapsed > timeouts.get(name, 1e9)
+            if rc is None and not timed_out and not (failed and stop_on_failure):
+                continue
+            if rc is None:
+                os.killpg(proc.pid, signal.SIGKILL)
+                proc.wait()
+            del running[name]
+            if rc is None and not timed_out:
+                continue  # stopped because another test already failed
+            durations[name] = elapsed
+            if (timed_out or rc != 0) and failed is None:
+                failed, how = name, "timeout" if timed_out else "failed"
+    return failed, how, durations
+
+
+# ---- the report -------------------------------------------------------------------------------------------
+
+
+def load_equivalents():
+    """scripts/mutation/equivalent.txt: `KEY  reason` lines for survivors shown to be equivalent."""
+    path = Path(__file__).resolve().parent / "equivalent.txt"
+    result = {}
+    if path.exists():
+        for line in path.read_text().splitlines():
+            if line.strip() and not line.startswith("#"):
+                key, _, reason = line.strip().partition(" ")
+                result[key] = reason.strip()
+    return result
+
+
+def write_report(results, path, command):
+    equivalents = load_equivalents()
+    modules = {}
+    for r in results:
+        m = modules.setdefault(module_of(r["file"]), {"mutants": 0, "killed": 0, "equivalent": 0,
+                                                      "survived": 0, "stillborn": 0})
+        if r["outcome"] == "stillborn":
+            m["stillborn"] += 1
+            continue
+        if r["outcome"] == "same-object" or (r["outcome"] == "survived" and r["key"] in equivalents):
+            m["equivalent"] += 1
+            continue
+        m["mutants"] += 1
+        m["killed" if r["outcome"] in ("killed", "timeout") else "survived"] += 1
+    lines = [f"Produced by `{command}`.", "",
+             "| module | mutants | killed | survived | score | equivalent (not counted) | stillborn |",
+             "|---|---|---|---|---|---|---|"]
+    total = {"mutants": 0, "killed": 0}
+    for name, m in sorted(modules.items()):
+        score = 100.0 * m["killed"] / m["mutants"] if m["mutants"] else 100.0
+        total["mutants"] += m["mutants"]
+        total["killed"] += m["killed"]
+        lines.append(f"| {name} | {m['mutants']} | {m['killed']} | {m['survived']} | {score:.1f} % | "
+                     f"{m['equivalent']} | {m['stillborn']} |")
+    if total["mutants"]:
+        lines.append(f"| **all** | {total['mutants']} | {total['killed']} | "
+                     f"{total['mutants'] - total['killed']} | {100.0 * total['killed'] / total['mutants']:.1f} % "
+                     "| | |")
+    lines += ["", "| mutant | where | operator | change | outcome |", "|---|---|---|---|---|"]
+    for r in sorted(results, key=lambda r: (r["file"], r["line"], r["operator"])):
+        if r["outcome"] == "stillborn":
+            continue
+        outcome = {"killed": f"killed by {r.get('killer')}", "timeout": f"killed (timeout in {r.get('killer')})",
+                   "same-object": "equivalent: same object code"}.get(r["outcome"], "")
+        if r["outcome"] == "survived":
+            outcome = f"equivalent: {equivalents[r['key']]}" if r["key"] in equivalents else "**survived**"
+        change = f"`{r['original']}` → `{r['mutated']}`".replace("|", "\\|")
+        lines.append(f"| {r['key']} | {r['file']}:{r['line']} | {r['operator']} | {change} | {outcome} |")
+    Path(path).write_text("\n".join(lines) + "\n")
+    return lines
+
+
+# ---- main -------------------------------------------------------------------------------------------------
+
+
+def source_files(paths):
+    files = []
+    for p in paths:
+        full = (ROOT / p).resolve()
+        if full.is_dir():
+            files += sorted(str(f.relative_to(ROOT)) for f in full.rglob("*.cpp"))
+        elif full.is_file():
+            files.append(str(full.relative_to(ROOT)))
+        else:
+            sys.exit(f"mutate: {p}: no such file or directory")
+    for f in files:
+        if not f.startswith("src/"):
+            sys.exit(f"mutate: {f}: only files under src/ are mutated")
+    return files
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("paths", nargs="*", default=["src/sim", "src/geometry", "src/model", "src/poses"],
+                    help="files or directories under src/ (default: the physics modules)")
+    ap.add_argument("--sample", type=float, default=1.0, help="fraction of the mutants to run (default 1)")
+    ap.add_argument("--seed", type=int, default=1, help="seed of the sample")
+    ap.add_argument("--build", default=str(ROOT / "build" / "mutate"), help="work directory")
+    ap.add_argument("--exclude", default=DEFAULT_EXCLUDE, help="regex of test names never run")
+    ap.add_argument("--jobs", type=int, default=os.cpu_count() or 2, help="tests run at once")
+    ap.add_argument("--list", action="store_true", help="list the mutants and stop")
+    ap.add_argument("--report", action="store_true", help="only write the report from the results so far")
+    ap.add_argument("--fresh", action="store_true", help="forget earlier results")
+    ap.add_argument("--out", default=None, help="Markdown table (default BUILD/report.md)")
+    args = ap.parse_args()
+
+    files = source_files(args.paths)
+    mutants = [m for f in files for m in mutants_of(f) if sampled(m, args.sample, args.seed)]
+    command = "scripts/mutate.sh " + " ".join(
+        ([f"--sample {args.sample} --seed {args.seed}"] if args.sample < 1 else []) + args.paths)
+    if args.list:
+        for m in mutants:
+            print(f"{m['key']} {m['file']}:{m['line']} {m['operator']}: {m['mutated']}")
+        print(f"{len(mutants)} mutants", file=sys.stderr)
+        return 0
+
+    work = Path(args.build)
+    tree, build_dir = work / "tree", work / "build"
+    results_path = work / "results.jsonl"
+    report_path = Path(args.out) if args.out else work / "report.md"
+    work.mkdir(parents=True, exist_ok=True)
+    if args.fresh and results_path.exists():
+        results_path.unlink()
+    done = {}
+    if results_path.exists():
+        for line in results_path.read_text().splitlines():
+            r = json.loads(line)
+            done[r["key"]] = r
+    wanted = {m["key"] for m in mutants}
+    if args.report:
+        write_report([r for k, r in done.items() if k in wanted], report_path, command)
+        print(f"report: {report_path}")
+        return 0
+
+    print(f"mutate: {len(mutants)} mutants in {len(files)} files ({len(wanted & done.keys())} done before)")
+    sync_tree(tree)
+    if not (build_dir / "CMakeCache.txt").exists():
+        subprocess.run(["cmake", "-S", str(tree), "-B", str(build_dir), "-DCMAKE_BUILD_TYPE=Release",
+                        "-DREPOSE_BUILD_BENCH=OFF"], check=True, stdout=subprocess.DEVNULL)
+    if not build(build_dir, work / "build.log"):
+        sys.exit(f"mutate: the unmutated tree does not build; see {work / 'build.log'}")
+
+    tests = {t["name"]: t for t in list_tests(build_dir, args.exclude)}
+    baseline_path = work / "baseline.json"
+    baseline = json.loads(baseline_path.read_text()) if baseline_path.exists() else {}
+    if set(baseline.get("durations", {})) != set(tests) or baseline.get("tree") != tree_digest(tree, files):
+        print(f"mutate: baseline run of {len(tests)} tests")
+        failed, how, durations = run_tests(tests, sorted(tests), {}, args.jobs, stop_on_failure=False)
+        if failed:
+            sys.exit(f"mutate: the unmutated suite fails ({failed} {how}); fix it first")
+        baseline = {"durations": durations, "tree": tree_digest(tree, files)}
+        baseline_path.write_text(json.dumps(baseline))
+    durations = baseline["durations"]
+    timeouts = {n: max(60.0, 5 * d) for n, d in durations.items()}
+    kills = {}  # tests that killed mutants go first: most mutants die to a handful of tests
+    for r in done.values():
+        if r.get("killer"):
+            kills[r["killer"]] = kills.get(r["killer"], 0) + 1
+
+    originals = {f: (tree / f).read_text() for f in files}
+    objects = {}
+    for f in files:
+        obj = object_file(build_dir, f)
+        objects[f] = obj.read_bytes() if obj else None
+    results_file = open(results_path, "a")
+    try:
+        for i, m in enumerate(mutants):
+            if m["key"] in done:
+                continue
+            lines = originals[m["file"]].split("\n")
+            lines[m["line"] - 1] = m["text"]
+            (tree / m["file"]).write_text("\n".join(lines))
+            t0 = time.monotonic()
+            record = {k: m[k] for k in ("key", "file", "line", "operator", "original", "mutated")}
+            if not build(build_dir, work / "mutant-build.log"):
+                record["outcome"] = "stillborn"
+            else:
+                obj = object_file(build_dir, m["file"])
+                if obj and objects[m["file"]] is not None and obj.read_bytes() == objects[m["file"]]:
+                    record["outcome"] = "same-object"
+                else:
+                    order = sorted(tests, key=lambda n: (-kills.get(n, 0), durations.get(n, 0)))
+                    killer, how, _ = run_tests(tests, order, timeouts, args.jobs)
+                    record["outcome"] = "survived" if killer is None else ("timeout" if how == "timeout"
+                                                                           else "killed")
+                    if killer:
+                        record["killer"] = killer
+                        kills[killer] = kills.get(killer, 0) + 1
+            record["seconds"] = round(time.monotonic() - t0, 1)
+            results_file.write(json.dumps(record) + "\n")
+            results_file.flush()
+            done[m["key"]] = record
+            print(f"[{i + 1}/{len(mutants)}] {m['file']}:{m['line']} {m['operator']}: {record['outcome']}"
+                  f"{' by ' + record['killer'] if record.get('killer') else ''} ({record['seconds']} s)",
+                  flush=True)
+    finally:
+        results_file.close()
+        for f, text in originals.items():
+            (tree / f).write_text(text)
+        build(build_dir, work / "build.log")
+    lines = write_report([r for k, r in done.items() if k in wanted], report_path, command)
+    print("\n".join(lines[:4 + len({module_of(f) for f in files}) + 1]))
+    print(f"report: {report_path}")
+    return 0
+
+
+def tree_digest(tree, files):
+    """Identifies the tests and sources the baseline was measured on."""
+    h = hashlib.sha1()
+    for sub in ("tests", "src", "include", "apps"):
+        for f in sorted((tree / sub).rglob("*")):
+            if f.is_file():
+                h.update(str(f.relative_to(tree)).encode())
+                h.update(f.read_bytes())
+    return h.hexdigest()
+
+
+if __name__ == "__main__":
+    sys.exit(main())
