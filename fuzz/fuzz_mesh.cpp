@@ -2,8 +2,11 @@
 // ".obj", ".ply" or ".off"), so each reader gets its own binary and its own corpus.
 //
 // Oracle: the bytes are rejected with repose::Error, or they give a mesh whose triangle indices are in
-// range; if validate_mesh() accepts it, every vertex is finite, and the particle built from it has finite
-// mass properties and a positive volume. Anything else (another exception, a failed check, a sanitizer
+// range; if validate_mesh() accepts it, it is a solid by the harness's own checks (solid_checks.hpp): every
+// vertex finite, closed and consistently wound (each directed edge once, its reverse once), a positive volume
+// computed here by the divergence theorem and equal to the particle's within a round-off bound. The particle
+// built from it has finite mass properties, a centre of mass inside its bounding box, and a convex hull that
+// contains every vertex and the centre of mass. Anything else (another exception, a failed check, a sanitizer
 // report) is a crash.
 #include <cmath>
 #include <cstddef>
@@ -14,6 +17,7 @@
 #include "repose/geometry/mesh.hpp"
 #include "repose/io/mesh_io.hpp"
 #include "repose/model/particle.hpp"
+#include "solid_checks.hpp"
 
 #ifndef REPOSE_FUZZ_MESH_EXT
 #error "define REPOSE_FUZZ_MESH_EXT, e.g. \".stl\""
@@ -21,9 +25,7 @@
 
 namespace {
 
-void require(bool ok) {
-  if (!ok) __builtin_trap();
-}
+using repose_fuzz::require;
 
 bool indices_in_range(const repose::TriangleMesh& mesh) {
   const auto n = static_cast<std::int64_t>(mesh.vertices.size());
@@ -47,6 +49,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     repose::validate_mesh(mesh, name);
     require(!mesh.triangles.empty() && indices_in_range(mesh));
     for (const repose::Vec3& v : mesh.vertices) require(v.allFinite());
+    require(repose_fuzz::closed_and_consistently_wound(mesh));
+    const repose_fuzz::SolidSums sums = repose_fuzz::solid_sums(mesh);
+    const double round_off = repose_fuzz::volume_round_off(mesh, sums);
+    require(std::isfinite(sums.volume) && sums.volume > round_off);
 
     const repose::Particle p = repose::make_particle(mesh, name, 1.0);
     require(std::isfinite(p.mass.volume) && p.mass.volume > 0);
@@ -55,6 +61,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require(p.mass.principal_moments.allFinite() && p.mass.principal_axes.allFinite());
     require(std::isfinite(p.length) && p.length > 0);
     require(p.input_offset.allFinite() && !p.hull.faces.empty());
+    // The same solid: the same volume (p.mesh is the validated mesh moved to the centre of mass).
+    require(std::abs(p.mass.volume - sums.volume) <= round_off);
+    require(p.mesh.triangles.size() == mesh.triangles.size());
+    // A solid's centre of mass (the body-frame origin) lies in its bounding box and inside its convex hull,
+    // and the hull contains every vertex: no vertex further than round-off outside any hull face's plane.
+    // qhull places planes to ~1e-15 relative; 1e-9·D leaves room for its coplanar-facet merging.
+    const double tol = 1e-9 * sums.diagonal;
+    require((p.bounds.min.array() <= tol).all() && (p.bounds.max.array() >= -tol).all());
+    for (const repose::HullFace& f : p.hull.faces) {
+      require(f.normal.allFinite() && std::abs(f.normal.norm() - 1) < 1e-9 && f.offset >= -tol);
+      for (const repose::Vec3& v : p.mesh.vertices) require(f.normal.dot(v) <= f.offset + tol);
+    }
   } catch (const repose::Error&) {
     return 0;
   } catch (...) {

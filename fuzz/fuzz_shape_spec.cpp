@@ -1,9 +1,11 @@
 // libFuzzer harness for the shape-spec parser (make_shape: "box:x=1,y=2,z=3", "ellipsoid:a=..,n=..", ...).
 //
 // Oracle: the spec is rejected with repose::Error, or it gives a mesh that validate_mesh() accepts, with
-// finite vertices and triangle indices in range. Size parameters are capped in shapes.cpp, so no spec can
-// allocate more than the fuzzer's cap (-malloc_limit_mb=1024); the harness skips icosphere frequencies
-// above 40 only to stay within -timeout=10 (see docs/fuzzing.md).
+// finite vertices, and that is a solid by the harness's own checks (solid_checks.hpp): closed and
+// consistently wound (each directed edge once, its reverse once), with a positive volume computed here. A
+// built-in shape needs no repair: validate_mesh must weld, drop and flip nothing. Size parameters are capped
+// in shapes.cpp, so no spec can allocate more than the fuzzer's cap (-malloc_limit_mb=1024); the harness
+// skips icosphere frequencies above 40 only to stay within -timeout=10 (see docs/fuzzing.md).
 #include <algorithm>
 #include <charconv>
 #include <cstddef>
@@ -14,12 +16,11 @@
 #include "repose/error.hpp"
 #include "repose/geometry/mesh.hpp"
 #include "repose/geometry/shapes.hpp"
+#include "solid_checks.hpp"
 
 namespace {
 
-void require(bool ok) {
-  if (!ok) __builtin_trap();
-}
+using repose_fuzz::require;
 
 std::string_view trim(std::string_view s) {
   const auto first = s.find_first_not_of(" \t");
@@ -65,16 +66,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     __builtin_trap();
   }
   // A spec that parses must give a valid solid: a repose::Error from here on is a bug too.
+  repose::MeshReport report;
   try {
-    repose::validate_mesh(mesh, spec);
+    report = repose::validate_mesh(mesh, spec);
   } catch (...) {
     __builtin_trap();
   }
-  const auto n = static_cast<std::int64_t>(mesh.vertices.size());
-  require(!mesh.triangles.empty());
+  require(report.welded_vertices == 0 && report.degenerate_triangles == 0 && report.unused_vertices == 0 &&
+          !report.flipped);
   for (const repose::Vec3& v : mesh.vertices) require(v.allFinite());
-  for (const repose::Triangle& t : mesh.triangles) {
-    for (const std::int32_t i : t) require(i >= 0 && i < n);
-  }
+  require(repose_fuzz::closed_and_consistently_wound(mesh));
+  const repose_fuzz::SolidSums sums = repose_fuzz::solid_sums(mesh);
+  require(std::isfinite(sums.volume) && sums.volume > repose_fuzz::volume_round_off(mesh, sums));
   return 0;
 }
