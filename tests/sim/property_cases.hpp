@@ -122,8 +122,9 @@ inline std::uint64_t case_seed(std::uint64_t master, int index) {
 /// gives every possibly-smooth ellipsoid a damping (log-uniform in [1e-2, 1], as the paper does for its
 /// smooth ellipsoid), keeps them few and coarse, and stops them after kSmoothStepBudget steps (a smooth
 /// particle need not rest; one that hits the budget is counted in the summary); `full` is for the big local
-/// sweep, with the default limits.
-inline Case make_case(std::uint64_t master, int index, bool full = false) {
+/// sweep, with the default limits. `coarse` (the sanitizer build's sweep, where every step costs ~100×) keeps
+/// the same draws but the cheapest meshes: irregular grains of frequency 3, cylinders of 6 or 16 sides.
+inline Case make_case(std::uint64_t master, int index, bool full = false, bool coarse = false) {
   Rng rng(case_seed(master, index));
   Case c;
   c.index = index;
@@ -137,7 +138,7 @@ inline Case make_case(std::uint64_t master, int index, bool full = false) {
   switch (c.shape) {
     case ShapeClass::irregular: {
       const int seed = 1 + rng.pick(12);
-      const int n = 3 + rng.pick(4);  // icosphere frequency 3..6
+      const int n = coarse ? (rng.pick(4), 3) : 3 + rng.pick(4);  // icosphere frequency 3..6
       c.spec = "irregular:seed=" + std::to_string(seed) + ",n=" + std::to_string(n);
       break;
     }
@@ -151,10 +152,10 @@ inline Case make_case(std::uint64_t master, int index, bool full = false) {
       c.spec = "tetrahedron:edge=" + num4(rng.log_uniform(0.2, 3.0));
       break;
     case ShapeClass::cylinder: {
-      static constexpr int kSides[] = {6, 16, 64};
+      static constexpr int kSides[] = {6, 16, 64}, kCoarseSides[] = {6, 16, 6};
       const double r = rng.log_uniform(0.1, 1.5);
       c.spec = "cylinder:r=" + num4(r) + ",h=" + num4(r * rng.log_uniform(0.1, 6)) +
-               ",n=" + std::to_string(kSides[rng.pick(3)]);
+               ",n=" + std::to_string((coarse ? kCoarseSides : kSides)[rng.pick(3)]);
       break;
     }
     case ShapeClass::ellipsoid: {

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <repose/geometry/types.hpp>
 #include <string>
@@ -103,6 +104,39 @@ inline RestCheck check_rest(const std::vector<Vec3>& vertices, const Quat& q, co
   else if (c.plane_tilt > 1e-9)
     c.problem = "the supporting face is tilted " + std::to_string(c.plane_tilt) + " rad from the wall";
   return c;
+}
+
+}  // namespace repose::oracle
+
+namespace repose::oracle {
+
+/// Whether a solid with its centre of mass at the origin stands on the planar convex face `corners` (3-D
+/// points in order around the face, outward normal `normal`): the origin's projection on the face plane lies
+/// strictly inside the polygon. Returns the signed distance from the projection to the nearest edge
+/// (positive inside), computed from the corners alone.
+inline double face_margin(const std::vector<Vec3>& corners, const Vec3& normal) {
+  const Vec3 n = normal.normalized();
+  const Vec3 p = n * n.dot(corners[0]);  // the origin's projection on the face plane
+  double margin = INFINITY;
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    const Vec3& a = corners[i];
+    const Vec3& b = corners[(i + 1) % corners.size()];
+    // Inward direction of edge a→b in the face plane (corners counter-clockwise seen from outside).
+    const Vec3 inward = n.cross(b - a).normalized();
+    margin = std::min(margin, (p - a).dot(inward));
+  }
+  return margin;
+}
+
+/// The smallest distance from the origin (the centre of mass) to the plane of a triangle of a closed convex
+/// mesh: the centre-of-mass height of its lowest rest.
+inline double lowest_rest_height(const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles) {
+  double lowest = INFINITY;
+  for (const auto& t : triangles) {
+    const Vec3 a = vertices[t[0]], b = vertices[t[1]], c = vertices[t[2]];
+    lowest = std::min(lowest, std::abs((b - a).cross(c - a).normalized().dot(a)));
+  }
+  return lowest;
 }
 
 }  // namespace repose::oracle

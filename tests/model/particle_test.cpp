@@ -1,0 +1,56 @@
+// The particle model's derived facts against closed forms: the static stability margin of each hull face
+// (the distance from the centre of mass's projection on the face to the face's nearest edge).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <repose/model/particle.hpp>
+
+namespace repose {
+namespace {
+
+// The margin of the face whose outward normal is `n` (the hull face closest to that direction).
+double margin_of(const Particle& p, const Vec3& n) {
+  std::size_t best = 0;
+  for (std::size_t f = 1; f < p.hull.faces.size(); ++f)
+    if (p.hull.faces[f].normal.dot(n) > p.hull.faces[best].normal.dot(n)) best = f;
+  EXPECT_NEAR(p.hull.faces[best].normal.dot(n), 1.0, 1e-12);
+  return p.face_stability_margin[best];
+}
+
+TEST(FaceStabilityMargin, BoxFacesHoldTheCentreOfMassByHalfTheirShorterSide) {
+  // Box 1 × 2 × 3: the centre of mass projects to each face's centre, so the margin is half the face's
+  // shorter side: ±x faces (2 × 3) 1, ±y faces (1 × 3) 0.5, ±z faces (1 × 2) 0.5. Exact in floating point up
+  // to the hull's round-off (1e-12).
+  const Particle box = load_particle("box:x=1,y=2,z=3", 1.0);
+  ASSERT_EQ(box.hull.faces.size(), 6u);
+  for (double s : {1.0, -1.0}) {
+    EXPECT_NEAR(margin_of(box, Vec3(s, 0, 0)), 1.0, 1e-12);
+    EXPECT_NEAR(margin_of(box, Vec3(0, s, 0)), 0.5, 1e-12);
+    EXPECT_NEAR(margin_of(box, Vec3(0, 0, s)), 0.5, 1e-12);
+  }
+}
+
+TEST(FaceStabilityMargin, TetrahedronFacesHoldItByTheirInradius) {
+  // Regular tetrahedron of edge a: the centre of mass projects to each face's centroid, whose distance to
+  // the edges is the inradius of the equilateral triangle, a/(2√3).
+  const Particle tet = load_particle("tetrahedron:edge=2", 1.0);
+  ASSERT_EQ(tet.hull.faces.size(), 4u);
+  for (double m : tet.face_stability_margin) EXPECT_NEAR(m, 2 / (2 * std::sqrt(3.0)), 1e-12);
+}
+
+TEST(FaceStabilityMargin, AnOverhangingFaceIsUnstable) {
+  // A prism 1 deep (y) over the obtuse triangle (0, 0), (1, 0), (3, 2) in x-z: its centroid is at x = 4/3,
+  // beyond the short base [0, 1], so on that face the centre of mass projects 1/3 outside (margin −1/3) and
+  // the prism tips over. On the ±y caps it projects to the centroid, whose distance to the nearest side of
+  // the triangle is the smallest of (twice the area)/(3·side): area 1, sides 1, √8 and √13, so 2/(3·√13).
+  TriangleMesh m;
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {3, 0, 2}, {0, 1, 0}, {1, 1, 0}, {3, 1, 2}};
+  m.triangles = {{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}, {2, 0, 3}, {2, 3, 5}};
+  const Particle prism = make_particle(m, "prism", 1.0);
+  EXPECT_NEAR(margin_of(prism, Vec3(0, 0, -1)), -1.0 / 3, 1e-12);
+  EXPECT_NEAR(margin_of(prism, Vec3(0, 1, 0)), 2 / (3 * std::sqrt(13.0)), 1e-12);
+  EXPECT_NEAR(margin_of(prism, Vec3(0, -1, 0)), 2 / (3 * std::sqrt(13.0)), 1e-12);
+}
+
+}  // namespace
+}  // namespace repose
