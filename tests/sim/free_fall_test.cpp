@@ -1,0 +1,52 @@
+// Free fall with an initial downward speed against closed forms computed in the test. Units are CGS (cm, g,
+// s; g = 981 cm/s²).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <repose/model/particle.hpp>
+#include <repose/sim/settle.hpp>
+#include <vector>
+
+namespace repose {
+namespace {
+
+constexpr double kG = 981.0;
+
+TEST(FreeFall, ThrownDownItFollowsTheBallisticArcAndStartsWithHalfMVSquared) {
+  // Box 1 × 2 × 3 of density 2 (m = 12 g), flat, lowest point h above the wall, thrown down at v. Closed
+  // forms: E(0) = ½·m·v² + m·g·(h + 1.5); while falling z(t) = h + 1.5 − v·t − ½·g·t², kinetic energy ½·m·(v
+  // + g·t)²; touchdown at t = (sqrt(v² + 2·g·h) − v)/g. The engine's fall is exact (closed form), so 1e-12
+  // relative.
+  const Particle box = load_particle("box:x=1,y=2,z=3", 2.0);
+  const double m = 12.0, h = 4.0, v = 150.0;
+  SettleParams p;
+  p.gravity = kG;
+  p.drop_height = h;
+  p.drop_speed = v;
+  std::vector<Sample> samples;
+  const SettleResult r = settle(box, p, Quat::Identity(), [&](const Sample& s) { samples.push_back(s); });
+  const double e0 = 0.5 * m * v * v + m * kG * (h + 1.5);
+  EXPECT_NEAR(r.energy_start, e0, 1e-12 * e0);
+  ASSERT_FALSE(samples.empty());
+  EXPECT_NEAR(samples.front().kinetic_energy, 0.5 * m * v * v, 1e-12 * e0);
+  const double touch = (std::sqrt(v * v + 2 * kG * h) - v) / kG;
+  ASSERT_FALSE(r.phases.empty());
+  EXPECT_EQ(r.phases.front().contact, ContactType::free_fall);
+  EXPECT_NEAR(r.phases.front().t1, touch, 1e-12 * touch);
+  int falling = 0;
+  for (const Sample& s : samples) {
+    if (s.contact != ContactType::free_fall || s.t >= touch) continue;
+    ++falling;
+    EXPECT_NEAR(s.com.z(), h + 1.5 - v * s.t - 0.5 * kG * s.t * s.t, 1e-12 * (h + 1.5)) << "t = " << s.t;
+    EXPECT_NEAR(s.kinetic_energy, 0.5 * m * (v + kG * s.t) * (v + kG * s.t), 1e-12 * e0) << "t = " << s.t;
+    EXPECT_NEAR(s.kinetic_energy + s.potential_energy, e0, 1e-12 * e0) << "t = " << s.t;
+  }
+  EXPECT_GT(falling, 10);
+  // Flat on its 1 × 2 face it stays there: the plastic impact leaves nothing.
+  ASSERT_EQ(r.status, Status::rest);
+  EXPECT_NEAR(r.time, touch, 1e-12 * touch);
+  EXPECT_NEAR(r.com.z(), 1.5, 1e-12);
+}
+
+}  // namespace
+}  // namespace repose
