@@ -148,14 +148,14 @@ std::unique_ptr<WorkRunner> make_runner() {
   return std::make_unique<LocalRunner>();
 }
 
-int run_poses(const PosesOptions& o, const CLI::App& sub) {
+// The job on this rank; the root prints the result. Errors are thrown (RootFailed on the other ranks).
+int run_job(const PosesOptions& o, const CLI::App& sub, WorkRunner& runner) {
   const auto start = std::chrono::steady_clock::now();
-  const std::unique_ptr<WorkRunner> runner = make_runner();
   // Ranks that share a node share its cores.
   const int threads =
       o.threads > 0
           ? o.threads
-          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / runner->ranks_on_this_node());
+          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / runner.ranks_on_this_node());
   // Options are checked on every rank alike, but only the root reports a problem.
   CampaignOptions campaign;
   std::exception_ptr bad_options;
@@ -194,7 +194,7 @@ int run_poses(const PosesOptions& o, const CLI::App& sub) {
     for (std::size_t i = 0; i < particles.size(); ++i)
       summary.result_files.push_back(std::filesystem::path(result_base(i)).filename().string() + ".json");
     summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    summary.ranks = runner->ranks();
+    summary.ranks = runner.ranks();
     summary.threads = threads;
     if (o.out_dir.empty()) return;
     for (std::size_t i = 0; i < particles.size(); ++i) write_result(result_base(i), studies[i]);
@@ -203,14 +203,9 @@ int run_poses(const PosesOptions& o, const CLI::App& sub) {
     write_file_atomically(o.out_dir + "/summary.md", summary_markdown(summary));
     write_file_atomically(o.out_dir + "/summary.json", summary_json(summary));
   };
-  std::vector<PosesStudy> studies;
-  try {
-    studies = run_campaign(resolve, campaign, *runner);
-  } catch (const RootFailed& failed) {
-    return failed.exit_code;  // the root reports
-  }
+  const std::vector<PosesStudy> studies = run_campaign(resolve, campaign, runner);
   bar.reset();
-  if (!runner->is_root()) return 0;
+  if (!runner.is_root()) return 0;
 
   if (studies.size() == 1) {
     print_result(studies[0], o.json);
@@ -221,6 +216,26 @@ int run_poses(const PosesOptions& o, const CLI::App& sub) {
     warn_unrested(particles[i].name + ": ",
                   studies[i].tally.status_counts[2] + studies[i].tally.status_counts[3]);
   return 0;
+}
+
+// The job ends collectively: the root prints its result or its one-line error and flushes, then tells every
+// rank the exit code, and no rank returns before that. mpirun ends the whole job as soon as one rank exits
+// non-zero, so a rank that left first with code 2 could kill the root before it printed the error.
+int run_poses(const PosesOptions& o, const CLI::App& sub) {
+  const std::unique_ptr<WorkRunner> runner = make_runner();
+  int code = 0;
+  try {
+    code = run_job(o, sub, *runner);
+  } catch (const RootFailed& failed) {
+    code = failed.exit_code;  // the root reports
+  } catch (...) {
+    // Only the root reaches the agreement below with an error of its own; an error that only another rank
+    // met is outside the protocol (the root would wait for it forever): that rank reports and exits now.
+    if (!runner->is_root()) throw;
+    code = report_error(std::current_exception());
+  }
+  std::cout.flush();
+  return std::stoi(runner->broadcast(std::to_string(code)));
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <cmath>
+#include <exception>
+#include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -37,6 +39,24 @@ inline nlohmann::json to_json(const Mat3& m) {
 inline void check_positive(const std::string& option, double value) {
   if (!std::isfinite(value) || value <= 0)
     throw Error("option " + option + " must be a finite positive number, got " + num(value));
+}
+
+/// Prints the one-line message of a failed command on stderr, flushed, and returns its exit code: 2 for
+/// bad input (repose::Error), 1 for an internal error.
+inline int report_error(const std::exception_ptr& error) {
+  int code = 1;
+  try {
+    std::rethrow_exception(error);
+  } catch (const Error& e) {
+    std::cerr << "repose: error: " << e.what() << "\n";
+    code = 2;
+  } catch (const std::exception& e) {
+    std::cerr << "repose: internal error: " << e.what() << "\n";
+  } catch (...) {
+    std::cerr << "repose: internal error: unknown exception\n";
+  }
+  std::cerr.flush();
+  return code;
 }
 
 }  // namespace repose::cli

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "format.hpp"
 #include "repose/error.hpp"
 
 int main(int argc, char** argv) {
@@ -33,12 +34,8 @@ int main(int argc, char** argv) {
   try {
     for (const auto& command : commands)
       if (command.app->parsed()) return command.run();
-  } catch (const repose::Error& e) {
-    std::cerr << "repose: error: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "repose: internal error: " << e.what() << "\n";
-    return 1;
+  } catch (...) {
+    return repose::cli::report_error(std::current_exception());
   }
   return 1;
 }

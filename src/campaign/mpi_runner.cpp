@@ -136,14 +136,24 @@ class MpiRunner final : public WorkRunner {
     else
       work_loop(work);
     // Every rank waits here until the root is done, so that no message of a later run() can reach the root
-    // while it still serves this one, and learns whether the run succeeded.
-    int ok = failure ? 0 : 1;
-    MPI_Bcast(&ok, 1, MPI_INT, 0, comm_);
+    // while it still serves this one, and learns whether the run succeeded: 0, or the exit code of the
+    // root's error (2 for repose::Error, as the root reports it; 1 otherwise).
+    int code = failure ? exit_code_of(failure) : 0;
+    MPI_Bcast(&code, 1, MPI_INT, 0, comm_);
     if (failure) std::rethrow_exception(failure);
-    if (!ok) throw RootFailed{1};
+    if (code != 0) throw RootFailed{code};
   }
 
  private:
+  static int exit_code_of(const std::exception_ptr& failure) {
+    try {
+      std::rethrow_exception(failure);
+    } catch (const Error&) {
+      return 2;
+    } catch (...) {
+      return 1;
+    }
+  }
   static int checked_count(std::uint64_t size) {
     if (size > static_cast<std::uint64_t>(INT_MAX)) throw Error("MPI message larger than 2 GiB");
     return static_cast<int>(size);

@@ -22,9 +22,10 @@ struct WorkItem {
   DropRange drops;
 };
 
-/// Raised on a rank other than the root when the root could not start the job (bad input: exit code 2; an
-/// internal error: 1) or a run failed (1). The root raises the error itself; the other ranks should exit
-/// quietly with that code, so that the error is reported once.
+/// Raised on a rank other than the root when the root could not start the job or a run failed: exit code 2
+/// if the root's error is a repose::Error (bad input), else 1. The root raises the error itself; the other
+/// ranks should exit quietly with that code, so that the error is reported once, and only after the root has
+/// reported it (an MPI launcher ends the whole job when one rank exits non-zero; see cmd_poses.cpp).
 struct RootFailed {
   int exit_code = 2;
 };
@@ -50,7 +51,7 @@ class WorkRunner {
   /// result; `progress` (root only, may be null) counts finished drops. On other ranks: runs the items the
   /// root sends until it says stop. Returns on every rank only once the root is done. If `work` or `absorb`
   /// throws, no new items are handed out, the items already running finish, the root rethrows the first
-  /// error and the other ranks throw RootFailed.
+  /// error and the other ranks throw RootFailed with its exit code.
   virtual void run(const std::vector<WorkItem>& items, const Work& work, const Absorb& absorb,
                    std::atomic<std::uint64_t>* progress) = 0;
 };
