@@ -49,9 +49,11 @@ Quat parse_orientation(const std::string& spec) {
   if (kind == "axis-angle") {
     const auto v = parse_numbers(spec, args, 4);
     const Vec3 axis(v[0], v[1], v[2]);
-    const double n = axis.norm();
-    if (!(n > 1e-300) || !std::isfinite(n)) throw Error("orientation '" + spec + "': zero axis");
-    return Quat(Eigen::AngleAxisd(v[3], axis / n)).normalized();
+    // Scaled by its largest component before normalising: the squares of a tiny axis (1e-160) underflow,
+    // which would tilt it or make it "zero" (found by fuzz_orientation_spec); any non-zero axis is accepted.
+    const double largest = axis.cwiseAbs().maxCoeff();
+    if (!(largest > 0)) throw Error("orientation '" + spec + "': zero axis");
+    return Quat(Eigen::AngleAxisd(v[3], (axis / largest).normalized())).normalized();
   }
   throw Error("orientation '" + spec + "': unknown kind '" + kind + "' (expected quat:w,x,y,z, " +
               "axis-angle:x,y,z,radians or identity)");

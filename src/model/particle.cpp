@@ -42,6 +42,14 @@ Particle make_particle(TriangleMesh mesh, const std::string& name, double densit
   p.length = characteristic_length(p.mass.volume);
   p.bounds = bounding_box(p.mesh.vertices);
   p.hull = compute_convex_hull(p.mesh.vertices);
+  // A solid's centre of mass is strictly inside its convex hull. A closed, consistently wound surface of
+  // positive volume can still pass through itself; then the centre of mass can fall outside the hull, and no
+  // rest pose makes sense (found by fuzz_mesh_off / fuzz_mesh_ply).
+  for (const HullFace& face : p.hull.faces)
+    if (!(face.offset > 0))
+      throw Error(
+          name +
+          ": not a solid: the surface intersects itself (its centre of mass is outside its convex hull)");
 
   compute_dihedral_facts(p.mesh, p.length, p.max_dihedral_angle, p.convex_surface);
   for (const HullFace& face : p.hull.faces)

@@ -1,9 +1,13 @@
-// The particle model's derived facts against closed forms: the static stability margin of each hull face
-// (the distance from the centre of mass's projection on the face to the face's nearest edge).
+// The particle model against closed forms: the static stability margin of each hull face (the distance from
+// the centre of mass's projection on the face to the face's nearest edge), what it refuses as a solid, and
+// orientation specs.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <repose/error.hpp>
+#include <repose/model/orientation.hpp>
 #include <repose/model/particle.hpp>
+#include <string>
 
 namespace repose {
 namespace {
@@ -50,6 +54,38 @@ TEST(FaceStabilityMargin, AnOverhangingFaceIsUnstable) {
   EXPECT_NEAR(margin_of(prism, Vec3(0, 0, -1)), -1.0 / 3, 1e-12);
   EXPECT_NEAR(margin_of(prism, Vec3(0, 1, 0)), 2 / (3 * std::sqrt(13.0)), 1e-12);
   EXPECT_NEAR(margin_of(prism, Vec3(0, -1, 0)), 2 / (3 * std::sqrt(13.0)), 1e-12);
+}
+
+// Found by fuzz_mesh_off / fuzz_mesh_ply: a cube whose vertices were moved until its faces pass through each
+// other is closed, consistently wound and of positive volume, but its centre of mass lies outside its convex
+// hull: no solid. Rejected with one line naming the file.
+TEST(ParticleValidation, ASelfIntersectingSurfaceIsNoSolid) {
+  for (const char* file : {"fuzz/off_self_intersecting.off", "fuzz/ply_self_intersecting.ply"}) {
+    const std::string path = std::string(REPOSE_TEST_DATA) + "/" + file;
+    try {
+      load_particle(path, 1.0);
+      ADD_FAILURE() << file << " accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(
+          std::string(e.what()),
+          path +
+              ": not a solid: the surface intersects itself (its centre of mass is outside its convex hull)");
+    }
+  }
+}
+
+// Found by fuzz_orientation_spec: the axis of an axis-angle spec is any non-zero vector; a tiny one (whose
+// squares underflow) names the same rotation as the unit vector: cos(θ/2), sin(θ/2)·axis exactly.
+TEST(OrientationSpec, ATinyAxisNamesTheSameRotation) {
+  for (const char* spec :
+       {"axis-angle:1e-160,1e-160,0,1", "axis-angle:1e-300,1e-300,0,1", "axis-angle:7,7,0,1"}) {
+    const Quat q = parse_orientation(spec);
+    EXPECT_NEAR(q.w(), std::cos(0.5), 1e-15) << spec;
+    EXPECT_NEAR(q.x(), std::sin(0.5) / std::sqrt(2.0), 1e-15) << spec;
+    EXPECT_NEAR(q.y(), std::sin(0.5) / std::sqrt(2.0), 1e-15) << spec;
+    EXPECT_NEAR(q.z(), 0.0, 1e-15) << spec;
+  }
+  EXPECT_THROW(parse_orientation("axis-angle:0,0,0,1"), Error);
 }
 
 }  // namespace
