@@ -37,6 +37,37 @@ inline std::string read_file(const std::filesystem::path& path) {
   return s.str();
 }
 
+/// `s` single-quoted for /bin/sh.
+inline std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+/// A JSON array of numbers as a vector (empty if `v` is not an array).
+inline std::vector<double> numbers(const nlohmann::json& v) {
+  std::vector<double> out;
+  if (v.is_array())
+    for (const nlohmann::json& x : v) out.push_back(x.get<double>());
+  return out;
+}
+
+/// The rows of a CSV file after its header, each split at commas.
+inline std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::stringstream in(text);
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    std::vector<std::string> fields;
+    std::stringstream fs(line);
+    std::string f;
+    while (std::getline(fs, f, ',')) fields.push_back(f);
+    rows.push_back(fields);
+  }
+  return rows;
+}
+
 /// The JSON without its timing object, the only part allowed to differ between equivalent runs.
 inline nlohmann::json without_timing(nlohmann::json j) {
   j.erase("timing");
