@@ -1,26 +1,19 @@
-// `repose poses` over many particles, across MPI ranks, and resumed after a kill, through the real
-// executable. The MPI tests need a build with REPOSE_MPI and mpirun (REPOSE_MPIEXEC).
+// `repose poses` over many particles and across MPI ranks, through the real executable (resume after a
+// kill: campaign_resume_cli_test.cpp). The MPI tests need a build with REPOSE_MPI and mpirun
+// (REPOSE_MPIEXEC).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <signal.h>
-#include <spawn.h>
 #include <stdlib.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
 #include "cli_test_support.hpp"
 #include "run_cli.hpp"
-
-extern char** environ;
 
 namespace {
 
@@ -55,55 +48,6 @@ class CampaignCli : public repose::test::TempDirTest {
     return without_timing(json::parse(read_file(path)));
   }
 };
-
-// Starts `command` (run by /bin/sh) in its own process group and returns its pid.
-pid_t spawn(const std::string& command) {
-  posix_spawnattr_t attr;
-  posix_spawnattr_init(&attr);
-  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
-  posix_spawnattr_setpgroup(&attr, 0);
-  std::string shell = "/bin/sh", flag = "-c", line = "exec " + command;
-  char* argv[] = {shell.data(), flag.data(), line.data(), nullptr};
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, "/bin/sh", nullptr, &attr, argv, environ);
-  posix_spawnattr_destroy(&attr);
-  return rc == 0 ? pid : -1;
-}
-
-// Waits until `path` exists (true) or `pid` has exited or 120 s have passed (false).
-bool wait_for_file(const fs::path& path, pid_t pid) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (fs::exists(path)) return true;
-    int status = 0;
-    if (::waitpid(pid, &status, WNOHANG) == pid) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  }
-  return false;
-}
-
-// Every file under `dir` that has a final name (not a temporary .tmp-PID) is a complete JSON or CSV file.
-void expect_no_partial_files(const fs::path& dir) {
-  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-    if (!entry.is_regular_file()) continue;
-    const std::string name = entry.path().filename().string();
-    if (name.find(".tmp-") != std::string::npos) continue;
-    const std::string text = read_file(entry.path());
-    if (entry.path().extension() == ".json")
-      EXPECT_FALSE(json::parse(text, nullptr, false).is_discarded()) << "partial file " << entry.path();
-    else
-      EXPECT_TRUE(!text.empty() && text.back() == '\n') << "partial file " << entry.path();
-  }
-}
-
-// The shell command line of `repose ARGS`.
-std::string repose_command(const std::string& args) {
-  std::string line = "'";
-  line += REPOSE_CLI;
-  line += "' ";
-  line += args;
-  return line;
-}
 
 const std::string kCube = std::string(REPOSE_TEST_DATA) + "/cube_ascii.stl";
 
@@ -169,35 +113,6 @@ TEST_F(CampaignCli, DirectoryOfMeshesAndBadInput) {
                    {"box_x=1_y=1_z=1.json", "checkpoint of a different run", "seeds"});
 }
 
-// The acceptance test of resume: kill -9 midway, rerun the same command, get the uninterrupted result.
-TEST_F(CampaignCli, KilledRunResumesToTheUninterruptedResult) {
-  const std::string common = "poses box:x=1,y=1,z=1 -n " + drops(6000) + " --seed 8 --no-progress";
-  const std::string args = common + " --chunk " + drops(100) + " --threads 1";
-  const json whole = parse_json(run_cli(common + " --json --threads 2"));
-  const fs::path out = dir_ / "out";
-  const fs::path checkpoint = out / ".repose-checkpoint/box_x=1_y=1_z=1.json";
-  const pid_t pid = spawn(repose_command(args + " --out " + out.string() + " >/dev/null 2>&1"));
-  ASSERT_GT(pid, 0);
-  ASSERT_TRUE(wait_for_file(checkpoint, pid)) << "no checkpoint appeared";
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  ASSERT_EQ(::kill(pid, SIGKILL), 0) << "the run ended before it could be killed";
-  int status = 0;
-  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
-  ASSERT_TRUE(WIFSIGNALED(status)) << "the run ended before it was killed";
-
-  // Midway: the checkpoint is a complete result file holding some but not all drops; no result yet.
-  const json saved = json::parse(read_file(checkpoint));
-  EXPECT_GT(saved["n"].get<int>(), 0);
-  EXPECT_LT(saved["n"].get<int>(), 6000 / kScale);
-  EXPECT_FALSE(fs::exists(out / "poses.json"));
-  expect_no_partial_files(out);
-
-  const auto resumed = run_cli(args + " --json --out " + out.string());
-  EXPECT_EQ(without_timing(parse_json(resumed)).dump(), without_timing(whole).dump());
-  EXPECT_EQ(result(out / "poses.json").dump(), without_timing(whole).dump());
-  EXPECT_EQ(entries(out), (std::vector<std::string>{"poses.csv", "poses.json"})) << "checkpoint left behind";
-}
-
 #ifdef REPOSE_MPIEXEC
 
 std::string mpirun(int ranks) { return std::string(REPOSE_MPIEXEC) + " -np " + std::to_string(ranks) + " "; }
@@ -231,28 +146,6 @@ TEST_F(CampaignCli, ManyParticlesAcrossRanksMatchOneProcess) {
       EXPECT_EQ(read_file(dir_ / "one" / name), read_file(dir_ / "three" / name)) << name;
   }
   EXPECT_EQ(json::parse(read_file(dir_ / "three/summary.json"))["timing"]["ranks"], 3);
-}
-
-TEST_F(CampaignCli, MpiJobKilledMidwayResumesOnAnotherRankCount) {
-  const std::string common = "poses box:x=1,y=1,z=1 -n " + drops(8000) + " --seed 4 --no-progress";
-  const std::string args = common + " --chunk " + drops(100) + " --threads 1";
-  const json whole = parse_json(run_cli(common + " --json --threads 2"));
-  const fs::path out = dir_ / "out";
-  const pid_t pid = spawn(mpirun(2) + repose_command(args + " --out " + out.string() + " >/dev/null 2>&1"));
-  ASSERT_GT(pid, 0);
-  ASSERT_TRUE(wait_for_file(out / ".repose-checkpoint/box_x=1_y=1_z=1.json", pid))
-      << "no checkpoint appeared";
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  // mpirun passes SIGTERM on to every rank and waits for them (as SLURM's scancel does).
-  ASSERT_EQ(::kill(pid, SIGTERM), 0);
-  int status = 0;
-  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
-  ASSERT_FALSE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "the job ended before it was stopped";
-  EXPECT_FALSE(fs::exists(out / "poses.json"));
-  expect_no_partial_files(out);
-
-  const auto resumed = run_cli(args + " --json --out " + out.string(), mpirun(3));
-  EXPECT_EQ(without_timing(parse_json(resumed)).dump(), without_timing(whole).dump());
 }
 
 // Bad input under mpirun: rank 0 prints the one-line error, once, and every rank exits with code 2. Before
