@@ -59,6 +59,9 @@ void remove_temporaries(const std::string& path) {
 }
 
 std::string read_text_file(const std::string& path, std::size_t max_bytes) {
+  std::error_code ec;
+  // fopen opens a directory for reading on Linux; fread then fails with a bare "I/O error".
+  if (std::filesystem::is_directory(path, ec)) throw Error(path + ": cannot read: is a directory");
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) throw Error(path + ": cannot read: " + std::strerror(errno));
   std::string text;

@@ -115,6 +115,12 @@ TEST_F(PosesCli, BadInput) {
   expect_bad_input(run_cli("poses 'box:x=1,y=-1,z=1' -n 5"), {"box"});
   expect_bad_input(run_cli("poses nosuchshape:x=1 -n 5"), {"nosuchshape"});
   expect_bad_input(run_cli("poses " + (dir_ / "missing.stl").string() + " -n 5"), {"missing.stl"});
+  // A directory where a file is read says so (fopen accepts a directory; its read fails as an I/O error).
+  fs::create_directory(dir_ / "adir");
+  expect_bad_input(run_cli("merge " + (dir_ / "adir").string()), {"adir: cannot read: is a directory"});
+  expect_bad_input(run_cli("poses box:x=1,y=1,z=1 -n 5 --manifest " + (dir_ / "adir").string()),
+                   {"adir: cannot read: is a directory"});
+  fs::remove(dir_ / "adir");
   // An output directory that cannot be created: nothing is written anywhere.
   std::ofstream(dir_ / "file") << "x";
   expect_bad_input(run_cli("poses box:x=1,y=1,z=1 -n 5 --out " + (dir_ / "file/sub").string()), {"file/sub"});
