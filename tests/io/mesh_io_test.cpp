@@ -200,7 +200,7 @@ TEST_F(MeshIoTest, ObjIndexForms) {
   TriangleMesh m = read_mesh(write("relative.obj", vertices + "vt 0 0\nvn 0 0 1\nf -4 -2 -3\nf 1/1 2/1 4/1\n"
                                                               "f 2//1 3//1 4//1\nf 1/1/1 4/1/1 3/1/1\n"));
   validate_mesh(m, "relative.obj");
-  EXPECT_NEAR(signed_volume(m), 1.0 / 6.0, 1e-12);
+  EXPECT_NEAR(signed_volume(m), 1.0 / 6.0, 1e-12);  // exact corner tetrahedron; round-off (measured 0)
   EXPECT_THAT(load_error(write("zero.obj", vertices + "f 0 1 2\n")),
               HasSubstr("zero.obj: line 5: in face 1, vertex index 0 does not exist (4 vertices)"));
   EXPECT_THAT(load_error(write("neg.obj", vertices + "f -1 -2 -5\n")),
@@ -247,7 +247,7 @@ TEST_F(MeshIoTest, OffMalformedLines) {
             "0\r\n\r\n0 1 0\r\n0 0 1\r\n3 0 2 1\r\n3 0 1 3\r\n3 1 2 3\r\n3 0 3 2\r\n");
   TriangleMesh m = read_mesh(ok);
   validate_mesh(m, ok);
-  EXPECT_NEAR(signed_volume(m), 1.0 / 6.0, 1e-12);
+  EXPECT_NEAR(signed_volume(m), 1.0 / 6.0, 1e-12);  // exact corner tetrahedron; round-off (measured 0)
 }
 
 TEST_F(MeshIoTest, AsciiStlFacetWithFourVertices) {
@@ -462,9 +462,12 @@ TEST_F(MeshIoTest, WriteStlNormalsFaceOutward) {
     float n[3], v[3];
     std::memcpy(n, bytes.data() + 84 + 50 * t, sizeof n);
     std::memcpy(v, bytes.data() + 84 + 50 * t + 12, sizeof v);
+    // Stored as float32: each component rounded by ≤ 6e-8 relative, so |n| − 1 ≤ ~1e-7 for any normal; 1e-6
+    // is 10× that bound (the cube's axis normals measure 0).
     EXPECT_NEAR(Vec3(n[0], n[1], n[2]).norm(), 1.0, 1e-6);
-    // For the unit cube an outward normal points away from the centre.
-    EXPECT_GT(Vec3(n[0], n[1], n[2]).dot(Vec3(v[0], v[1], v[2]) - Vec3::Constant(0.5)), 0.0) << t;
+    // Every face of the unit cube is 0.5 from its centre, so an outward unit normal gives exactly 0.5 (all
+    // values here are exact in float); inward gives −0.5, a tilted normal anything else.
+    EXPECT_EQ(Vec3(n[0], n[1], n[2]).dot(Vec3(v[0], v[1], v[2]) - Vec3::Constant(0.5)), 0.5) << t;
   }
 }
 

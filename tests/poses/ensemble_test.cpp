@@ -117,20 +117,27 @@ TEST(Ensemble, SmoothParticleEarlyDecisionMatchesFullSettle) {
   const EnsembleTally full = s.run({0, n}, 2, PoseMethod::dynamic, false);
   for (std::size_t p = 0; p < 2; ++p) EXPECT_EQ(early.poses[p].count, full.poses[p].count);
   EXPECT_EQ(early.status_counts[1], n);
+  // Not a tolerance: measured 7.2× fewer steps.
   EXPECT_LT(early.steps * 4, full.steps) << "early decision should save most of the rocking";
 }
 
 // Published values (Newcombe, Stat. Med. 17:857, 1998, Table II): 81/263 → [0.2553, 0.3662] and 0/10 →
-// [0, 0.2775] (4 decimals).
+// [0, 0.2775], to 4 decimals, so 5e-5 (half a unit of the last digit; measured 1.2e-5, 9.6e-6, 3.3e-5). The
+// same bounds to 15 digits, evaluated at 30 digits (mpmath) from (x + z²/2 ± z·sqrt(x(n − x)/n + z²/4)) /
+// (n + z²), z = sqrt(2)·erfinv(0.95): 1e-12 relative is a round-off margin (measured ≤ 2.3e-16).
 TEST(Ensemble, WilsonIntervalMatchesPublishedValues) {
   const auto a = wilson_interval(81, 263);
   EXPECT_NEAR(a[0], 0.2553, 5e-5);
   EXPECT_NEAR(a[1], 0.3662, 5e-5);
+  EXPECT_NEAR(a[0], 0.255288519878274226, 1e-12 * a[0]);
+  EXPECT_NEAR(a[1], 0.366209576982800070, 1e-12 * a[1]);
   const auto b = wilson_interval(0, 10);
   EXPECT_EQ(b[0], 0.0);
   EXPECT_NEAR(b[1], 0.2775, 5e-5);
+  EXPECT_NEAR(b[1], 0.277532799862889253, 1e-12 * b[1]);
   const auto c = wilson_interval(10, 10);
   EXPECT_NEAR(c[0], 1 - 0.2775, 5e-5);
+  EXPECT_NEAR(c[0], 0.722467200137110747, 1e-12 * c[0]);
   EXPECT_EQ(c[1], 1.0);
 }
 

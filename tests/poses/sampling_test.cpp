@@ -33,13 +33,15 @@ TEST(Sampling, GoldenValues) {
   EXPECT_EQ(u[2], 0x1.7244908dffcep-3);
 }
 
+// Round-off of a normalised quaternion: measured 2.2e-16 (1 ulp); 1e-15 (4.5 ulps) is a round-off margin.
 TEST(Sampling, OrientationsAreUnitQuaternions) {
   for (std::uint64_t i = 0; i < 10000; ++i) EXPECT_NEAR(drop_orientation(3, i).norm(), 1.0, 1e-15);
 }
 
 // Haar measure on SO(3): the rotation angle θ has CDF F(θ) = (θ − sin θ)/π (e.g. Miles, Biometrika 1965), and
 // R·v is uniform on the sphere for any fixed v. Kolmogorov–Smirnov at N = 100,000: the 0.1 % critical value
-// of sqrt(N)·D is 1.95, so a correct sampler fails this fixed-seed test with probability < 1e-3.
+// of sqrt(N)·D is 1.95, so a correct sampler fails this fixed-seed test with probability < 1e-3 (measured
+// 0.67 on the angle, 0.93 on the image).
 TEST(Sampling, RotationAngleAndImagesFollowTheHaarMeasure) {
   constexpr int n = 100000;
   std::vector<double> angle(n), z(n);
@@ -63,7 +65,8 @@ TEST(Sampling, RotationAngleAndImagesFollowTheHaarMeasure) {
   }
   EXPECT_LT(std::sqrt(n) * d_angle, 1.95);
   EXPECT_LT(std::sqrt(n) * d_z, 1.95);
-  // Each component of the mean image has standard deviation sqrt(1/(3N)) = 0.0018; 5 sigma.
+  // Each component of the mean image has standard deviation sqrt(1/(3N)) = 0.0018 (measured 0.0029 = 1.6σ
+  // for the largest of three); 5σ: a false alarm has probability 3 × 5.7e-7.
   EXPECT_LT((mean / n).cwiseAbs().maxCoeff(), 5 * std::sqrt(1.0 / (3.0 * n)));
 }
 
