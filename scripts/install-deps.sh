@@ -6,6 +6,7 @@ packages=(
   g++ cmake make pkg-config git
   libeigen3-dev libcli11-dev nlohmann-json3-dev libqhull-dev libassimp-dev libtbb-dev librandom123-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libbullet-dev  # bench/peers: the peer benchmark against Bullet 3.24 (double precision); builds without it too
   libopenmpi-dev openmpi-bin  # the MPI runner (mpirun -np K repose poses); builds without it too
   clang libclang-rt-14-dev  # scripts/fuzz.sh: the clang driver and libFuzzer + sanitizer runtimes
   python3 python3-matplotlib python3-scipy  # scipy: independent ODE reference in the physics tests

@@ -1,0 +1,469 @@
+// The measuring stick: repose against Bullet, drop for drop (issue 12, deliverable 1).
+//
+// For each shape, drop i of the seed starts both engines at repose::drop_orientation(seed, i), from rest,
+// with the lowest point touching the wall, under the same gravity (SI, g = 9.81 m/s², density 1000 kg/m³, the
+// particle in metres). Per shape it prints the time per settle of each engine, their ratio, Bullet's maximum
+// penetration and both rest-face histograms, classified by repose's rest-pose catalogue.
+//
+//   repose: the `repose poses` defaults (damping ratio 0.05, decide early; --full-settle: to rest), through
+//           repose::simulate_drop, exactly as a `repose poses` worker runs a drop.
+//   Bullet: btDiscreteDynamicsWorld, btStaticPlaneShape ground at z = 0, the particle a btConvexHullShape of
+//           repose's hull vertices in the principal frame with repose's exact mass and principal moments;
+//           Bullet's defaults otherwise (collision margin, friction 0.5, restitution 0, no damping, solver
+//           settings, deactivation); a fixed step stepSimulation(1 ms, 0). It starts with the lowest point of
+//           its collision shape (the hull grown by the margin, 0.04 m) touching the plane. A drop ends at the
+//           first 0.1 s window whose mean |v| and |ω| are below 1e-3·sqrt(g·L) and 1e-3·sqrt(g/L) and not
+//           growing (second half of the window no faster than the first), or when Bullet puts the body to
+//           sleep, or at 20 s of simulated time (counted as "no rest").
+//
+// One thread for everything. Time per settle is steady_clock time over the N drops; for Bullet only the
+// drop's reset, its steps and the rest test are timed, not the penetration measurement (a scan of every hull
+// vertex after every step, which Bullet itself does not need).
+//
+// Run:  build/release/bench/peers/repose_peer_bullet [--drops N] [--seed S] [--only NAME[,NAME...]]
+//                                                    [--full-settle] [--bullet-no-sleep] [--bullet-damping]
+//                                                    [--trace] [--no-histograms]   (--help: what they do)
+// Figures and discussion: docs/performance.md ("Against Bullet").
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <random>
+#include <repose/error.hpp>
+#include <repose/geometry/shapes.hpp>
+#include <repose/poses/ensemble.hpp>
+#include <repose/poses/landscape.hpp>
+#include <repose/poses/rest_poses.hpp>
+#include <repose/poses/sampling.hpp>
+#include <repose/poses/study.hpp>
+#include <repose/repose.hpp>
+#include <string>
+#include <vector>
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using repose::Quat;
+using repose::Vec3;
+
+constexpr double kDensity = 1000.0;  // kg/m³
+constexpr double kGravity = 9.81;    // m/s²
+constexpr double kDt = 1e-3;         // Bullet's fixed step (s)
+constexpr int kWindow = 100;         // rest window: 0.1 s of steps
+constexpr double kRestFraction = 1e-3;
+constexpr double kMaxTime = 20.0;  // s
+
+struct Shape {
+  std::string name;   // row label
+  std::string spec;   // repose shape spec, or "bumpy-ellipsoid" (built here)
+  std::string about;  // what it is
+};
+
+// A convex-ish grain of about 10,000 hull vertices: the shape library's irregular grains reach ~1,000 hull
+// vertices at 128,000 triangles (their hull vertex count grows only linearly with the icosphere frequency),
+// so this one is an ellipsoid (semi-axes 0.5, 0.4, 0.3 m, geodesic frequency 32: 10,242 vertices) with twelve
+// smooth random radial bumps of ±10 % (fixed seed): concave between bumps, so not "smooth", and several
+// distinct rest poses.
+repose::TriangleMesh bumpy_ellipsoid() {
+  repose::TriangleMesh mesh = repose::make_shape("ellipsoid:a=0.5,b=0.4,c=0.3,n=32");
+  std::mt19937_64 bits(12);
+  const auto uniform = [&] { return static_cast<double>(bits() >> 11) * 0x1.0p-53; };
+  std::vector<Vec3> centre;
+  std::vector<double> amplitude;
+  for (int k = 0; k < 12; ++k) {
+    const double z = 2 * uniform() - 1, phi = 2 * std::numbers::pi * uniform(), s = std::sqrt(1 - z * z);
+    centre.emplace_back(s * std::cos(phi), s * std::sin(phi), z);
+    amplitude.push_back(0.2 * uniform() - 0.1);
+  }
+  for (Vec3& v : mesh.vertices) {
+    const Vec3 u = v.normalized();
+    double scale = 1;
+    for (int k = 0; k < 12; ++k) scale += amplitude[k] * std::exp(-(1 - u.dot(centre[k])) / (0.3 * 0.3));
+    v *= scale;
+  }
+  return mesh;
+}
+
+repose::Particle make_shape_particle(const Shape& shape) {
+  if (shape.spec == "bumpy-ellipsoid") return repose::make_particle(bumpy_ellipsoid(), shape.spec, kDensity);
+  return repose::load_particle(shape.spec, kDensity);
+}
+
+// repose's side of the comparison: everything `repose poses` prepares once per particle.
+struct ReposeSide {
+  repose::RestLandscape landscape;
+  repose::PosesStudy study;
+  repose::EnsembleOptions options;
+};
+
+ReposeSide prepare_repose(const repose::Particle& particle, bool full_settle) {
+  ReposeSide side;
+  side.landscape = repose::compute_rest_landscape(particle);
+  repose::StudySettings settings;  // the `repose poses` defaults: seed 1, damping ratio 0.05, decide early
+  settings.density = kDensity;
+  settings.params.gravity = kGravity;
+  settings.decide_early = !full_settle;
+  side.study = repose::prepare_study(particle, side.landscape, settings);
+  side.options = repose::ensemble_options(side.study, {0, 0}, 1);
+  return side;
+}
+
+// Departures from Bullet's defaults, for comparison runs (both off by default).
+struct BulletOptions {
+  bool sleep = true;   // Bullet's deactivation (default on); --bullet-no-sleep turns it off
+  double damping = 0;  // repose's damping coefficient C to mirror as Bullet angular damping (0: none)
+};
+
+// Bullet's side: one world per shape; each drop removes the body, resets it and adds it again.
+class BulletSide {
+ public:
+  BulletSide(const repose::Particle& particle, const BulletOptions& options)
+      : dispatcher_(&config_),
+        world_(&dispatcher_, &broadphase_, &solver_, &config_),
+        ground_shape_({0, 0, 1}, 0) {
+    world_.setGravity({0, 0, -kGravity});
+    ground_ =
+        std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0, nullptr, &ground_shape_));
+    world_.addRigidBody(ground_.get());
+    // Bullet's body frame: the centre of mass at the origin and the principal axes (Bullet's inertia is
+    // diagonal), i.e. repose's body frame rotated by the principal axes A: x_bullet = Aᵀ x_body.
+    axes_ = particle.mass.principal_axes;
+    for (const Vec3& v : particle.hull.vertices) {
+      const Vec3 p = axes_.transpose() * v;
+      vertices_.push_back(p);
+      hull_.addPoint({p.x(), p.y(), p.z()}, false);
+    }
+    hull_.recalcLocalAabb();
+    const Vec3 moments = particle.mass.principal_moments;
+    btRigidBody::btRigidBodyConstructionInfo info(particle.mass.mass, nullptr, &hull_,
+                                                  {moments.x(), moments.y(), moments.z()});
+    body_ = std::make_unique<btRigidBody>(info);
+    // --bullet-damping: repose's damping torque −C·ω as Bullet angular damping, at the decay rate C/I of the
+    // mean principal moment I (Bullet scales ω by (1 − d)^dt each step, so d = 1 − exp(−C/I · 1 s)).
+    if (options.damping > 0) body_->setDamping(0, 1 - std::exp(-options.damping / (moments.sum() / 3)));
+    sleep_ = options.sleep;
+    world_.addRigidBody(body_.get());
+  }
+
+  double margin() const { return hull_.getMargin(); }
+
+  struct Drop {
+    bool rested = false;
+    bool slept = false;            // ended by Bullet's deactivation rather than by the rest window
+    double time = 0;               // simulated time (s)
+    double seconds = 0;            // wall-clock time of the drop (s)
+    double max_depth = -INFINITY;  // greatest depth of a hull vertex below z = 0 over the run (m; < 0: above)
+    Vec3 down_body;                // final direction at the wall, repose's body frame
+  };
+
+  Drop drop(const Quat& q, double length) {
+    Drop out;
+    const auto t0 = Clock::now();
+    // Orientation of Bullet's (principal) frame: world = R_q·x_body = R_q·A·x_bullet.
+    const repose::Mat3 r = q.toRotationMatrix() * axes_;
+    btMatrix3x3 basis(r(0, 0), r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0), r(2, 1), r(2, 2));
+    // Lowest point of Bullet's collision shape (the hull grown by its margin) touching the plane.
+    double lowest = INFINITY;
+    for (const Vec3& p : vertices_) lowest = std::min(lowest, r.row(2).dot(p));
+    const btTransform start(basis, {0, 0, margin() - lowest});
+    world_.removeRigidBody(body_.get());
+    body_->setWorldTransform(start);
+    body_->setInterpolationWorldTransform(start);
+    body_->setLinearVelocity({0, 0, 0});
+    body_->setAngularVelocity({0, 0, 0});
+    body_->setInterpolationLinearVelocity({0, 0, 0});
+    body_->setInterpolationAngularVelocity({0, 0, 0});
+    body_->clearForces();
+    body_->forceActivationState(sleep_ ? ACTIVE_TAG : DISABLE_DEACTIVATION);
+    body_->setDeactivationTime(0);
+    world_.addRigidBody(body_.get());
+    Clock::duration timed = Clock::now() - t0;
+
+    const double v_tol = kRestFraction * std::sqrt(kGravity * length);
+    const double w_tol = kRestFraction * std::sqrt(kGravity / length);
+    std::vector<double> speed(kWindow), spin(kWindow);  // ring buffers of the last 0.1 s
+    const long max_steps = std::lround(kMaxTime / kDt);
+    long step = 0;
+    for (; step < max_steps;) {
+      const auto s0 = Clock::now();
+      world_.stepSimulation(kDt, 0);
+      speed[step % kWindow] = body_->getLinearVelocity().length();
+      spin[step % kWindow] = body_->getAngularVelocity().length();
+      ++step;
+      const bool slept = body_->getActivationState() == ISLAND_SLEEPING;
+      bool done = slept;
+      if (!done && step >= kWindow) {
+        double v[2] = {0, 0}, w[2] = {0, 0};  // sums over the older and the newer half of the window
+        for (int k = 0; k < kWindow; ++k) {
+          const int half = k < kWindow / 2 ? 0 : 1;
+          const long i = (step - kWindow + k) % kWindow;
+          v[half] += speed[i];
+          w[half] += spin[i];
+        }
+        const double n = kWindow;
+        done = (v[0] + v[1]) / n < v_tol && (w[0] + w[1]) / n < w_tol && v[1] <= v[0] + 1e-3 * v_tol * n &&
+               w[1] <= w[0] + 1e-3 * w_tol * n;
+      }
+      timed += Clock::now() - s0;
+      // Untimed: the deepest hull vertex below the wall.
+      const btTransform& x = body_->getWorldTransform();
+      const btVector3 row = x.getBasis().getRow(2);
+      const double z0 = x.getOrigin().z();
+      for (const Vec3& p : vertices_)
+        out.max_depth = std::max(out.max_depth, -(z0 + row.x() * p.x() + row.y() * p.y() + row.z() * p.z()));
+      if (done) {
+        out.rested = true;
+        out.slept = slept;
+        break;
+      }
+    }
+    out.time = static_cast<double>(step) * kDt;
+    out.seconds = std::chrono::duration<double>(timed).count();
+    const btMatrix3x3& b = body_->getWorldTransform().getBasis();
+    const Vec3 down_bullet(-b[2][0], -b[2][1], -b[2][2]);  // Bᵀ·(0,0,−1)
+    out.down_body = axes_ * down_bullet;
+    return out;
+  }
+
+ private:
+  btDefaultCollisionConfiguration config_;
+  btCollisionDispatcher dispatcher_;
+  btDbvtBroadphase broadphase_;
+  btSequentialImpulseConstraintSolver solver_;
+  btDiscreteDynamicsWorld world_;
+  btStaticPlaneShape ground_shape_;
+  std::unique_ptr<btRigidBody> ground_;
+  btConvexHullShape hull_;
+  std::unique_ptr<btRigidBody> body_;
+  repose::Mat3 axes_;
+  std::vector<Vec3> vertices_;
+  bool sleep_ = true;
+
+ public:
+  ~BulletSide() {
+    world_.removeRigidBody(body_.get());
+    world_.removeRigidBody(ground_.get());
+  }
+};
+
+// The hull face whose outward normal is nearest `down` (body frame), and the angle between them.
+std::pair<int, double> nearest_face(const repose::Particle& particle, const Vec3& down) {
+  int best = -1;
+  double best_dot = -2;
+  for (int f = 0; f < static_cast<int>(particle.hull.faces.size()); ++f) {
+    const double d = particle.hull.faces[f].normal.dot(down);
+    if (d > best_dot) best_dot = d, best = f;
+  }
+  return {best, std::acos(std::clamp(best_dot, -1.0, 1.0))};
+}
+
+struct Row {
+  std::string name;
+  int hull_vertices = 0;
+  double length = 0;
+  std::uint64_t drops = 0;
+  double repose_seconds = 0, bullet_seconds = 0;
+  double bullet_depth = -INFINITY, bullet_mean_time = 0, bullet_tilt = 0;
+  std::uint64_t bullet_no_rest = 0, bullet_slept = 0, bullet_off_face = 0, repose_no_rest = 0, agree = 0;
+  std::vector<std::uint64_t> repose_hist, bullet_hist;
+  std::vector<Vec3> pose_normals;
+  double margin = 0;
+};
+
+Row run_shape(const Shape& shape, std::uint64_t drops, std::uint64_t seed, bool full_settle, bool trace,
+              BulletOptions bullet_options) {
+  const repose::Particle particle = make_shape_particle(shape);
+  ReposeSide rs = prepare_repose(particle, full_settle);
+  rs.options.seed = seed;
+  const repose::RestPoseCatalog& catalog = rs.study.catalog;
+  if (bullet_options.damping > 0) bullet_options.damping = rs.study.params.damping;
+  BulletSide bullet(particle, bullet_options);
+  Row row;
+  row.name = shape.name;
+  row.hull_vertices = static_cast<int>(particle.hull.vertices.size());
+  row.length = particle.length;
+  row.drops = drops;
+  row.margin = bullet.margin();
+  const std::size_t poses = catalog.poses.size();
+  row.repose_hist.assign(poses + 1, 0);  // last bin: no rest
+  row.bullet_hist.assign(poses + 1, 0);
+  for (const repose::RestPose& p : catalog.poses) row.pose_normals.push_back(p.down_normal_body);
+
+  std::vector<int> repose_pose(drops);
+  const auto t0 = Clock::now();
+  for (std::uint64_t i = 0; i < drops; ++i)
+    repose_pose[i] = repose::simulate_drop(particle, rs.landscape, catalog, rs.options, i).pose;
+  row.repose_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+
+  for (std::uint64_t i = 0; i < drops; ++i) {
+    const BulletSide::Drop d = bullet.drop(repose::drop_orientation(seed, i), particle.length);
+    row.bullet_seconds += d.seconds;
+    row.bullet_mean_time += d.time / static_cast<double>(drops);
+    row.bullet_depth = std::max(row.bullet_depth, d.max_depth);
+    const auto [face, angle] = nearest_face(particle, d.down_body);
+    const int pose = catalog.face_pose[face];
+    if (!d.rested) ++row.bullet_no_rest;
+    if (d.slept) ++row.bullet_slept;
+    if (trace)
+      std::fprintf(
+          stderr,
+          "  drop %llu: repose pose %d; Bullet pose %d, %s at %.3f s, face %d (stability margin %.3g L) "
+          "at %.3g rad\n",
+          static_cast<unsigned long long>(i), repose_pose[i], pose,
+          d.slept    ? "asleep"
+          : d.rested ? "at rest"
+                     : "NO REST",
+          d.time, face, particle.face_stability_margin[face] / particle.length, angle);
+    if (particle.face_stability_margin[face] <= 0 || angle > 1e-2) ++row.bullet_off_face;
+    row.bullet_tilt = std::max(row.bullet_tilt, angle);
+    ++row.bullet_hist[pose];
+    if (repose_pose[i] < 0) {
+      ++row.repose_no_rest;
+      ++row.repose_hist[poses];
+    } else {
+      ++row.repose_hist[repose_pose[i]];
+    }
+    if (repose_pose[i] == pose) ++row.agree;
+  }
+  return row;
+}
+
+void print_histogram(const Row& row) {
+  std::printf(
+      "\n%s: rest poses (repose catalogue; Bullet's final down direction -> nearest hull face -> its "
+      "pose)\n\n",
+      row.name.c_str());
+  std::printf("| pose | down normal (body) | repose | Bullet |\n|---:|---|---:|---:|\n");
+  std::vector<std::size_t> order;
+  for (std::size_t p = 0; p < row.pose_normals.size(); ++p)
+    if (row.repose_hist[p] + row.bullet_hist[p] > 0) order.push_back(p);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return row.repose_hist[a] + row.bullet_hist[a] > row.repose_hist[b] + row.bullet_hist[b];
+  });
+  for (std::size_t p : order) {
+    const Vec3& n = row.pose_normals[p];
+    std::printf("| %zu | (%+.3f, %+.3f, %+.3f) | %llu | %llu |\n", p, n.x(), n.y(), n.z(),
+                static_cast<unsigned long long>(row.repose_hist[p]),
+                static_cast<unsigned long long>(row.bullet_hist[p]));
+  }
+  if (row.repose_no_rest > 0)
+    std::printf("| no rest | | %llu | |\n", static_cast<unsigned long long>(row.repose_no_rest));
+  std::printf(
+      "\nsame pose in both engines: %llu of %llu drops; Bullet's largest angle between its final down "
+      "direction "
+      "and the nearest hull face normal: %.2g rad\n",
+      static_cast<unsigned long long>(row.agree), static_cast<unsigned long long>(row.drops),
+      row.bullet_tilt);
+}
+
+int usage(const char* argv0, bool help = false) {
+  std::fprintf(
+      help ? stdout : stderr,
+      "usage: %s [--drops N] [--seed S] [--only NAME[,NAME...]] [--full-settle]\n"
+      "          [--bullet-no-sleep] [--bullet-damping] [--trace] [--no-histograms]\n"
+      "  --drops N      drops per shape (default: per shape, a run of a few minutes)\n"
+      "  --seed S       drop i starts at repose::drop_orientation(S, i) (default 1)\n"
+      "  --only NAMES   comma-separated row names (cube, box123, tetrahedron, cylinder64, ellipsoid2000,\n"
+      "                 grain100, grain1000, grain10000)\n"
+      "  --full-settle  time repose to rest (repose poses --full-settle) instead of its default\n"
+      "  --bullet-no-sleep  switch off Bullet's deactivation (default: on, Bullet's default)\n"
+      "  --bullet-damping   give Bullet angular damping at repose's rate C/I (default: none, Bullet's "
+      "default)\n"
+      "  --trace        one line per drop on stderr: both poses, how Bullet's run ended, its final face\n"
+      "  --no-histograms  only the table\n",
+      argv0);
+  return help ? 0 : 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::uint64_t drops = 0, seed = 1;
+  bool full_settle = false, histograms = true, trace = false;
+  BulletOptions bullet_options;
+  std::string only;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const auto value = [&]() -> std::string { return i + 1 < argc ? argv[++i] : std::string(); };
+    if (a == "--drops") {
+      drops = std::strtoull(value().c_str(), nullptr, 10);
+      if (drops == 0) return usage(argv[0]);
+    } else if (a == "--seed") {
+      seed = std::strtoull(value().c_str(), nullptr, 10);
+    } else if (a == "--only") {
+      only = ',';  // built piecewise: GCC 12's -Wrestrict misfires on "," + s + "," (GCC bug 105329)
+      only += value();
+      only += ',';
+    } else if (a == "--full-settle") {
+      full_settle = true;
+    } else if (a == "--bullet-no-sleep") {
+      bullet_options.sleep = false;
+    } else if (a == "--bullet-damping") {
+      bullet_options.damping = 1;  // replaced by repose's C per shape
+    } else if (a == "--trace") {
+      trace = true;
+    } else if (a == "--no-histograms") {
+      histograms = false;
+    } else {
+      return usage(argv[0], a == "--help" || a == "-h");
+    }
+  }
+  // Default drops per shape: a run of a few minutes (about 2.5 on a loaded 2 GHz core).
+  const std::vector<std::pair<Shape, std::uint64_t>> shapes = {
+      {{"cube", "box:x=1,y=1,z=1", "cube, 1 m"}, 2000},
+      {{"box123", "box:x=1,y=2,z=3", "box 1x2x3 m"}, 2000},
+      {{"tetrahedron", "tetrahedron:edge=1", "regular tetrahedron, edge 1 m"}, 2000},
+      {{"cylinder64", "cylinder:r=0.5,h=1,n=64", "64-segment cylinder"}, 1000},
+      {{"ellipsoid2000", "ellipsoid:a=0.625,b=0.5,c=0.285,n=10", "ellipsoid, 2,000 triangles"}, 500},
+      {{"grain100", "irregular:seed=1,n=7", "irregular grain"}, 500},
+      {{"grain1000", "irregular:seed=1,n=68", "irregular grain"}, 200},
+      {{"grain10000", "bumpy-ellipsoid", "bumpy ellipsoid (see source)"}, 50},
+  };
+  std::printf(
+      "Bullet %d, btScalar %s precision, fixed step %g s, margin default, deactivation %s, angular damping "
+      "%s; "
+      "repose %s, seed %llu\n\n",
+      btGetVersion(), sizeof(btScalar) == 8 ? "double" : "single", kDt, bullet_options.sleep ? "on" : "off",
+      bullet_options.damping > 0 ? "repose's rate" : "none",
+      full_settle ? "--full-settle" : "poses defaults (decide early)", static_cast<unsigned long long>(seed));
+  std::vector<Row> rows;
+  try {
+    for (const auto& [shape, default_drops] : shapes) {
+      if (!only.empty() && only.find(',' + shape.name + ',') == std::string::npos) continue;
+      std::fprintf(stderr, "%s (%s) ...\n", shape.name.c_str(), shape.spec.c_str());
+      rows.push_back(
+          run_shape(shape, drops > 0 ? drops : default_drops, seed, full_settle, trace, bullet_options));
+    }
+  } catch (const repose::Error& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
+  std::printf(
+      "| shape | hull vertices | L (m) | drops | repose ms/settle | Bullet ms/settle | Bullet / repose | "
+      "Bullet "
+      "simulated s/settle | Bullet max depth of a hull vertex (L) | Bullet max depth of hull + margin (L) | "
+      "same "
+      "pose | Bullet no rest / off a stable face |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (const Row& r : rows) {
+    const double n = static_cast<double>(r.drops);
+    const double rep = 1e3 * r.repose_seconds / n, bul = 1e3 * r.bullet_seconds / n;
+    std::printf(
+        "| %s | %d | %.3f | %llu | %.3f | %.3f | %.2f | %.2f | %.1e | %.1e | %.0f %% | %llu / %llu |\n",
+        r.name.c_str(), r.hull_vertices, r.length, static_cast<unsigned long long>(r.drops), rep, bul,
+        bul / rep, r.bullet_mean_time, std::max(0.0, r.bullet_depth) / r.length,
+        std::max(0.0, r.bullet_depth + r.margin) / r.length, 100.0 * static_cast<double>(r.agree) / n,
+        static_cast<unsigned long long>(r.bullet_no_rest),
+        static_cast<unsigned long long>(r.bullet_off_face));
+  }
+  if (histograms)
+    for (const Row& r : rows) print_histogram(r);
+  return 0;
+}
