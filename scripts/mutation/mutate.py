@@ -61,9 +61,9 @@ def blank_literals_and_comments(line):
     return "".join(out)[: len(line)]
 
 
-def mutants_of(rel_path):
+def mutants_of(rel_path, text):
     """Every mutant of one source file: dicts with a stable key (file, operator, line text, occurrence)."""
-    lines = (ROOT / rel_path).read_text().split("\n")
+    lines = text.split("\n")
     result, in_block_comment = [], False
     for number, line in enumerate(lines, start=1):
         stripped = line.strip()
@@ -104,20 +104,30 @@ def module_of(rel_path):
 # ---- the copy of the tree and its build -------------------------------------------------------------------
 
 
-def sync_tree(tree):
-    """Copies the working tree's tracked and untracked (not ignored) files into `tree` when they differ."""
+def tree_files(commit):
+    """{relative path: bytes} of the source tree: the working tree's tracked and untracked (not ignored)
+    files, or those of a commit."""
+    if commit:
+        names = subprocess.run(["git", "ls-tree", "-r", "-z", "--name-only", commit], cwd=ROOT,
+                               capture_output=True, check=True).stdout.decode().split("\0")
+        return {n: subprocess.run(["git", "show", f"{commit}:{n}"], cwd=ROOT, capture_output=True,
+                                  check=True).stdout for n in filter(None, names)}
     listed = subprocess.run(["git", "ls-files", "-co", "--exclude-standard", "-z"], cwd=ROOT,
                             capture_output=True, check=True).stdout.decode().split("\0")
-    for rel in filter(None, listed):
-        src, dst = ROOT / rel, tree / rel
-        if not src.is_file():
-            continue
-        data = src.read_bytes()
+    return {n: (ROOT / n).read_bytes() for n in filter(None, listed) if (ROOT / n).is_file()}
+
+
+def sync_tree(tree, commit):
+    """Makes `tree` hold the source files (see tree_files), writing only those that differ so that the
+    incremental build stays incremental."""
+    for rel, data in tree_files(commit).items():
+        dst = tree / rel
         if dst.is_file() and dst.read_bytes() == data:
             continue
         dst.parent.mkdir(parents=True, exist_ok=True)
         dst.write_bytes(data)
-        shutil.copymode(src, dst)
+        if rel.endswith((".sh", ".py")):
+            dst.chmod(0o755)
 
 
 def build(build_dir, log):
@@ -272,11 +282,15 @@ def main():
     ap.add_argument("--list", action="store_true", help="list the mutants and stop")
     ap.add_argument("--report", action="store_true", help="only write the report from the results so far")
     ap.add_argument("--fresh", action="store_true", help="forget earlier results")
+    ap.add_argument("--retest", default="",
+                    help="comma-separated outcomes to run again (e.g. survived,timeout after adding tests)")
     ap.add_argument("--out", default=None, help="Markdown table (default BUILD/report.md)")
+    ap.add_argument("--commit", default=None, help="mutate this commit's tree (default: the working tree)")
     args = ap.parse_args()
 
     files = source_files(args.paths)
-    mutants = [m for f in files for m in mutants_of(f) if sampled(m, args.sample, args.seed)]
+    sources = tree_files(args.commit)
+    mutants = [m for f in files for m in mutants_of(f, sources[f].decode()) if sampled(m, args.sample, args.seed)]
     command = "scripts/mutate.sh " + " ".join(
         ([f"--sample {args.sample} --seed {args.seed}"] if args.sample < 1 else []) + args.paths)
     if args.list:
@@ -297,6 +311,9 @@ def main():
         for line in results_path.read_text().splitlines():
             r = json.loads(line)
             done[r["key"]] = r
+    retest = set(filter(None, args.retest.split(",")))
+    if retest:
+        done = {k: r for k, r in done.items() if r["outcome"] not in retest}
     wanted = {m["key"] for m in mutants}
     if args.report:
         write_report([r for k, r in done.items() if k in wanted], report_path, command)
@@ -304,7 +321,7 @@ def main():
         return 0
 
     print(f"mutate: {len(mutants)} mutants in {len(files)} files ({len(wanted & done.keys())} done before)")
-    sync_tree(tree)
+    sync_tree(tree, args.commit)
     if not (build_dir / "CMakeCache.txt").exists():
         subprocess.run(["cmake", "-S", str(tree), "-B", str(build_dir), "-DCMAKE_BUILD_TYPE=Release",
                         "-DREPOSE_BUILD_BENCH=OFF"], check=True, stdout=subprocess.DEVNULL)
@@ -333,6 +350,8 @@ def main():
     for f in files:
         obj = object_file(build_dir, f)
         objects[f] = obj.read_bytes() if obj else None
+    if retest:  # the file keeps the last outcome of every mutant
+        results_path.write_text("".join(json.dumps(r) + "\n" for r in done.values()))
     results_file = open(results_path, "a")
     try:
         for i, m in enumerate(mutants):
@@ -357,6 +376,7 @@ def main():
                     if killer:
                         record["killer"] = killer
                         kills[killer] = kills.get(killer, 0) + 1
+            (tree / m["file"]).write_text(originals[m["file"]])  # one bug at a time: put the file back
             record["seconds"] = round(time.monotonic() - t0, 1)
             results_file.write(json.dumps(record) + "\n")
             results_file.flush()
