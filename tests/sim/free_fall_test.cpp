@@ -48,5 +48,19 @@ TEST(FreeFall, ThrownDownItFollowsTheBallisticArcAndStartsWithHalfMVSquared) {
   EXPECT_NEAR(r.com.z(), 1.5, 1e-12);
 }
 
+TEST(FreeFall, TheAutomaticTimeLimitCountsTheFall) {
+  // The default limit is 2000·sqrt(L/g) plus the fall time (SettleParams::max_time). Dropped flat from
+  // 8·10⁶·L the fall alone takes sqrt(2·8e6)·sqrt(L/g) = 4000·sqrt(L/g), twice the settling allowance, and
+  // the cube must still land (at the ballistic time, to 1e-9 relative) and rest.
+  const Particle cube = load_particle("box:x=1,y=1,z=1", 1.0);
+  SettleParams p;
+  p.gravity = kG;
+  p.drop_height = 8e6 * cube.length;
+  const SettleResult r = settle(cube, p, Quat::Identity());
+  ASSERT_EQ(r.status, Status::rest);
+  const double touch = std::sqrt(2 * p.drop_height / kG);
+  EXPECT_NEAR(r.time, touch, 1e-9 * touch);
+}
+
 }  // namespace
 }  // namespace repose
