@@ -312,8 +312,9 @@ def main():
             r = json.loads(line)
             done[r["key"]] = r
     retest = set(filter(None, args.retest.split(",")))
-    if retest:
-        done = {k: r for k, r in done.items() if r["outcome"] not in retest}
+    if retest:  # survivors already shown equivalent stay as they are
+        equivalents = load_equivalents()
+        done = {k: r for k, r in done.items() if r["outcome"] not in retest or k in equivalents}
     wanted = {m["key"] for m in mutants}
     if args.report:
         write_report([r for k, r in done.items() if k in wanted], report_path, command)
