@@ -311,11 +311,12 @@ def main():
         for line in results_path.read_text().splitlines():
             r = json.loads(line)
             done[r["key"]] = r
-    retest = set(filter(None, args.retest.split(",")))
-    if retest:  # survivors already shown equivalent stay as they are
-        equivalents = load_equivalents()
-        done = {k: r for k, r in done.items() if r["outcome"] not in retest or k in equivalents}
     wanted = {m["key"] for m in mutants}
+    retest = set(filter(None, args.retest.split(",")))
+    if retest:  # only this run's mutants; survivors already shown equivalent stay as they are
+        equivalents = load_equivalents()
+        done = {k: r for k, r in done.items()
+                if k not in wanted or r["outcome"] not in retest or k in equivalents}
     if args.report:
         write_report([r for k, r in done.items() if k in wanted], report_path, command)
         print(f"report: {report_path}")
