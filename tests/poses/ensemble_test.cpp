@@ -9,6 +9,7 @@
 #include "repose/error.hpp"
 #include "repose/poses/landscape.hpp"
 #include "repose/poses/rest_poses.hpp"
+#include "repose/poses/sampling.hpp"
 
 namespace {
 
@@ -119,6 +120,55 @@ TEST(Ensemble, SmoothParticleEarlyDecisionMatchesFullSettle) {
   EXPECT_EQ(early.status_counts[1], n);
   // Not a tolerance: measured 7.2× fewer steps.
   EXPECT_LT(early.steps * 4, full.steps) << "early decision should save most of the rocking";
+}
+
+// The early decision is exact only below the barrier: a particle whose energy exceeds the barrier of the
+// pose it is heading for may still climb over it. Box with half edges A = 0.5, B = 1, C = 1.5 (closed
+// forms): the ±x and ±y poses are left over the edges parallel to z, whose saddle puts the centre of mass at
+// sqrt(A² + B²) = sqrt(1.25) above the wall; the ±z poses need sqrt(A² + C²) = sqrt(2.5). Drops whose start
+// direction d0 rolls to an x or y face are released from rest with the lowest point at a height that puts
+// the centre of mass 1e-8·L above sqrt(1.25) (its height above the lowest point is the box's support
+// function A|d0x| + B|d0y| + C|d0z|). During the fall the energy stays above that barrier (the engine's
+// drift is < 1e-11·m·g·L, tests/sim), so no decision may come before the touchdown: the run takes at least
+// the free-fall time sqrt(2·height/g) in steps of dt. It rests where the full run rests.
+TEST(Ensemble, EnergyAboveThePoseBarrierIsNotDecidedInTheAir) {
+  const Study s("box:x=1,y=2,z=3");
+  const double A = 0.5, B = 1.0, C = 1.5;
+  const double low_barrier = std::sqrt(A * A + B * B);
+  const double high_barrier = std::sqrt(A * A + C * C);
+  EnsembleOptions o;
+  o.seed = 42;
+  o.params.dt = 1e-3 * std::sqrt(s.particle.length / o.params.gravity);
+  o.params.damping =
+      0.05 * s.particle.mass.mass * std::sqrt(o.params.gravity * std::pow(s.particle.length, 3));
+  const int wanted = kOptimised ? 3 : 1;
+  int tested = 0;
+  for (std::uint64_t i = 0; tested < wanted && i < 200; ++i) {
+    const Vec3 d0 = drop_orientation(o.seed, i).conjugate() * Vec3(0, 0, -1);
+    const int face = quasi_static_rest_face(s.particle, s.landscape, d0);
+    const Vec3& n = s.particle.hull.faces[static_cast<std::size_t>(face)].normal;
+    const double above_lowest = A * std::abs(d0.x()) + B * std::abs(d0.y()) + C * std::abs(d0.z());
+    if (std::abs(n.z()) > 0.5 || above_lowest > low_barrier - 0.2) continue;  // a z face, or a short fall
+    ++tested;
+    // The catalogue's barriers are the closed forms (1e-12: round-off of a square root; measured 0).
+    const RestPose& pose = s.catalog.poses[static_cast<std::size_t>(s.catalog.face_pose[face])];
+    ASSERT_NEAR(pose.barrier, low_barrier, 1e-12);
+    double highest = 0;
+    for (const RestPose& p : s.catalog.poses) highest = std::max(highest, p.barrier);
+    ASSERT_NEAR(highest, high_barrier, 1e-12);
+
+    o.params.drop_height = low_barrier + 1e-8 * s.particle.length - above_lowest;
+    o.decide_early = true;
+    const DropOutcome early = simulate_drop(s.particle, s.landscape, s.catalog, o, i);
+    o.decide_early = false;
+    const DropOutcome full = simulate_drop(s.particle, s.landscape, s.catalog, o, i);
+    const double fall = std::sqrt(2 * o.params.drop_height / o.params.gravity);
+    // Steps are dt long or shorter (cut at events), so the touchdown takes at least floor(fall / dt) steps.
+    EXPECT_GE(early.steps, static_cast<long>(std::floor(fall / o.params.dt))) << "drop " << i;
+    EXPECT_EQ(early.status, Status::rest) << "drop " << i;
+    EXPECT_EQ(early.pose, full.pose) << "drop " << i;
+  }
+  EXPECT_EQ(tested, wanted);
 }
 
 // Published values (Newcombe, Stat. Med. 17:857, 1998, Table II): 81/263 → [0.2553, 0.3662] and 0/10 →

@@ -1,0 +1,47 @@
+// Reading result files back: the pose records must name poses of the file's own catalogue.
+#include "repose/poses/study.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "repose/error.hpp"
+#include "repose/poses/landscape.hpp"
+
+namespace {
+
+using namespace repose;
+
+// Replaces the single occurrence of `from` in `text`.
+std::string replace_once(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  EXPECT_EQ(text.find(from, at + 1), std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+// A box with three different edge lengths rests on any of its 6 faces (6 poses, indices 0..5). A file whose
+// last record names pose 6, one past the end, must be rejected with the index named, not read into a pose
+// that does not exist.
+TEST(PosesStudyFile, PoseIndexOnePastTheEndIsRejected) {
+  const Particle particle = load_particle("box:x=1,y=2,z=3", 1.0);
+  const RestLandscape landscape = compute_rest_landscape(particle);
+  StudySettings settings;
+  settings.method = PoseMethod::quasi_static;
+  const PosesStudy study = prepare_study(particle, landscape, settings);
+  ASSERT_EQ(study.catalog.poses.size(), 6u);
+  const std::string text = poses_json(study);
+  const PosesStudy back = parse_poses_json(text, "good.json");  // every index 0..5 is in range
+  EXPECT_EQ(back.catalog.poses.size(), 6u);
+  const std::string bad = replace_once(text, "\"pose\": 5,", "\"pose\": 6,");
+  try {
+    parse_poses_json(bad, "bad.json");
+    ADD_FAILURE() << "pose index 6 of 6 poses was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.json: pose index 6 out of range"), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
