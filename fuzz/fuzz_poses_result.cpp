@@ -36,7 +36,6 @@ void require_same_params(const repose::SettleParams& a, const repose::SettlePara
   require(a.smooth == b.smooth && same(a.drop_height, b.drop_height) && same(a.drop_speed, b.drop_speed));
   require(same(a.max_time, b.max_time) && a.max_steps == b.max_steps);
   require(same(a.quaternion_tolerance, b.quaternion_tolerance) && a.max_iterations == b.max_iterations);
-  require(same(a.smooth_rest_energy, b.smooth_rest_energy));
 }
 
 void require_identical(const repose::PosesStudy& a, const repose::PosesStudy& b) {

@@ -37,8 +37,6 @@ void validate(const SettleParams& p) {
   require(std::isfinite(p.quaternion_tolerance) && p.quaternion_tolerance > 0, "quaternion-tolerance",
           p.quaternion_tolerance, "a finite positive number");
   require(p.max_iterations > 0, "max-iterations", p.max_iterations, "positive");
-  require(std::isfinite(p.smooth_rest_energy) && p.smooth_rest_energy > 0, "smooth-rest-energy",
-          p.smooth_rest_energy, "a finite positive number");
 }
 
 }  // namespace repose

@@ -72,9 +72,6 @@ bool is_smooth_surface(const Particle& particle) {
 namespace {
 constexpr int kBisections = 48;  // locates an event to 2^-48 of a step: far below 1e-9·L of motion
 constexpr int kStallLimit = 20;  // after this many near-empty steps, contact choices stop second-guessing
-// A slow smooth particle (heavy damping creeps) rests by its energy only once its bottom facet is this close
-// to flush (rad), so the rest pose is where the motion was going, not a jump to it.
-constexpr double kSmoothRestTilt = 0.01;
 // An edge balance (no motion, the centre of mass over the edge within 1e-9·L) is an unstable equilibrium,
 // not a rest: the particle is turned about the edge until its centre of mass is this far (× L) beyond it and
 // falls from there. Ten times the touching tolerance, so round-off never puts it back on the balance; the
@@ -126,8 +123,7 @@ struct Settler::Impl {
   std::vector<int> event_candidates;  // scratch, vertices that may cause an event within a step
   std::vector<char> in_contact;
   std::vector<std::vector<int>>
-      first_vertex_faces;   // per hull vertex: the hull faces whose loop starts there
-  double quiet_since = -1;  // smooth particles: since when the rest conditions have held (−1: not)
+      first_vertex_faces;  // per hull vertex: the hull faces whose loop starts there
   std::vector<Phase> phases;
   double max_penetration = 0;
   double energy_start = 0;
@@ -360,23 +356,10 @@ struct Settler::Impl {
 
     const Vec2 g(com.x(), com.y());
     if (smooth) {
-      // Rest once the kinetic energy has stayed small, with the weight's line of action inside the contact
-      // polygon, for 10 time steps (so a turning point of a large swing, where ω passes through zero, is not
-      // mistaken for rest).
-      const bool quiet =
-          kinetic_energy_of(omega) < params.smooth_rest_energy * body.mass * params.gravity * length &&
-          contact_polygon_margin(contact_points, g) > 0;
       // Three or more points on the wall around the centre of mass: the discretised surface has landed on a
       // face and the inelastic impact leaves no motion (this also ends the ever-faster rocking between the
-      // corners of the bottom face).
+      // corners of the bottom face). That landing is the only rest: a damped particle creeps onto its facet.
       if (touching.size() >= 3 && touching_points_hold(g) && come_to_rest()) return;
-      if (!quiet) {
-        quiet_since = -1;
-      } else if (quiet_since < 0) {
-        quiet_since = t;
-      } else if (t - quiet_since >= 10 * dt && come_to_rest(kSmoothRestTilt)) {
-        return;
-      }
     } else {
       if (touching_points_hold(g) && come_to_rest()) return;
       if (!finishing && paper_stability_test(contact_points, g)) finishing = true;
@@ -390,10 +373,6 @@ struct Settler::Impl {
                    t, to_string(type), contact.size(), touching.size(), finishing, support_vertex,
                    support.line, support.axis.x(), support.axis.y(), support.axis.z(), rot.omega.x(),
                    rot.omega.y(), rot.omega.z());
-  }
-
-  double kinetic_energy_of(const Vec3& omega) const {
-    return sim::rotational_energy(body, support, q, omega);
   }
 
   void set_type(ContactType new_type) {
@@ -471,16 +450,11 @@ struct Settler::Impl {
                                      world_vertex(face.loop[i + 1])))
             return true;
       }
-    return contact_polygon_margin(contact_points, g) > 0;
-  }
-
-  // Signed distance of the centre of mass's projection inside the 2-D hull of the contact points (negative
-  // outside, or when the points do not span a polygon).
-  double contact_polygon_margin(const std::vector<Vec3>& contact_points, const Vec2& g) const {
-    std::vector<Vec2> pts;
-    for (const Vec3& p : contact_points) pts.emplace_back(p.x(), p.y());
-    const std::vector<Vec2> poly = sim::convex_hull_2d(pts, touch_tol);
-    return poly.size() >= 3 ? sim::polygon_margin(poly, g) : -INFINITY;
+    // The polygon of the contact points' footprints; collinear contacts give a segment, whose margin is minus
+    // the distance to it (never positive): a line of contacts holds nothing by itself.
+    std::vector<Vec2> plan;
+    for (const Vec3& p : contact_points) plan.emplace_back(p.x(), p.y());
+    return sim::polygon_margin(sim::convex_hull_2d(plan, touch_tol), g) > 0;
   }
 
   // The support the contacts call for (see the file comment), and the switch to it if it is new.
@@ -676,7 +650,7 @@ struct Settler::Impl {
 
   // Finds the hull face under the centre of mass; if it is a statically stable face, sets it exactly flush on
   // the wall and ends the run. Returns false (and changes nothing) otherwise.
-  bool come_to_rest(double max_tilt = INFINITY) {
+  bool come_to_rest() {
     const Vec3 down(0, 0, -1);
     int best = -1;
     double best_down = -INFINITY;
@@ -695,8 +669,6 @@ struct Settler::Impl {
       }
     }
     if (best < 0 || particle.face_stability_margin[best] <= 0) return false;
-    if (std::acos(std::clamp(-(q * particle.hull.faces[best].normal).z(), -1.0, 1.0)) > max_tilt)
-      return false;
 
     // Rotate the face flush about the support point, then lift or lower it onto the wall exactly.
     const HullFace& face = particle.hull.faces[best];

@@ -8,6 +8,7 @@
 #include <repose/model/orientation.hpp>
 #include <repose/model/particle.hpp>
 #include <string>
+#include <vector>
 
 namespace repose {
 namespace {
@@ -54,6 +55,35 @@ TEST(FaceStabilityMargin, AnOverhangingFaceIsUnstable) {
   EXPECT_NEAR(margin_of(prism, Vec3(0, 0, -1)), -1.0 / 3, 1e-12);
   EXPECT_NEAR(margin_of(prism, Vec3(0, 1, 0)), 2 / (3 * std::sqrt(13.0)), 1e-12);
   EXPECT_NEAR(margin_of(prism, Vec3(0, -1, 0)), 2 / (3 * std::sqrt(13.0)), 1e-12);
+}
+
+// An L-shaped prism: the footprint [0,2]×[0,1] ∪ [0,1]×[0,2] (area 3), height 1. Its hull's caps are the
+// pentagon (0,0), (2,0), (2,1), (1,2), (0,2) of area 3.5, so the mesh covers 3/3.5 = 86 % of each cap: a cap
+// is not flat (a particle resting on it stands on the cap's corners, not on a surface), nor is the hull face
+// across the notch (covered 0 %), while the four full sides are flat (covered 100 %).
+TEST(FaceIsFlat, OnlyHullFacesTheMeshCoversWhollyAreSurfaces) {
+  const std::vector<Vec2> foot = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};  // counter-clockwise
+  TriangleMesh m;
+  for (double z : {0.0, 1.0})
+    for (const Vec2& p : foot) m.vertices.emplace_back(p.x(), p.y(), z);
+  const int n = static_cast<int>(foot.size());
+  for (int i = 1; i + 1 < n; ++i) {                // the footprint is star-shaped from vertex 0: a fan
+    m.triangles.push_back({0, i + 1, i});          // bottom, facing −z
+    m.triangles.push_back({n, n + i, n + i + 1});  // top, facing +z
+  }
+  for (int i = 0; i < n; ++i) {  // sides, facing outwards
+    const int j = (i + 1) % n;
+    m.triangles.push_back({i, j, n + j});
+    m.triangles.push_back({i, n + j, n + i});
+  }
+  const Particle l = make_particle(m, "L-prism", 1.0);
+  ASSERT_EQ(l.hull.faces.size(), 7u);  // 2 caps, 4 full sides, 1 across the notch
+  for (std::size_t f = 0; f < l.hull.faces.size(); ++f) {
+    const Vec3& normal = l.hull.faces[f].normal;
+    const bool cap = std::abs(normal.z()) > 0.5;
+    const bool notch = normal.x() > 0.1 && normal.y() > 0.1;  // (1, 1)/√2
+    EXPECT_EQ(l.face_is_flat[f], !cap && !notch) << "hull face with normal " << normal.transpose();
+  }
 }
 
 // Found by fuzz_mesh_off / fuzz_mesh_ply: a cube whose vertices were moved until its faces pass through each

@@ -62,5 +62,23 @@ TEST(FreeFall, TheAutomaticTimeLimitCountsTheFall) {
   EXPECT_NEAR(r.time, touch, 1e-9 * touch);
 }
 
+TEST(FreeFall, AStepLimitOfOneStopsAfterExactlyOneStepOfTheFall) {
+  // --max-steps 1 is a legal limit (any positive count): the run takes one step of the fall, dt, and stops
+  // with status max_steps, the centre of mass at h + ½ − ½·g·dt² (the fall is a closed form: 1e-12).
+  const Particle cube = load_particle("box:x=1,y=1,z=1", 1.0);
+  SettleParams p;
+  p.gravity = kG;
+  p.drop_height = 2.0;
+  p.dt = 1e-3;
+  p.max_steps = 1;
+  std::vector<Sample> samples;
+  const SettleResult r = settle(cube, p, Quat::Identity(), [&](const Sample& s) { samples.push_back(s); });
+  EXPECT_EQ(r.status, Status::max_steps);
+  EXPECT_EQ(r.steps, 1);
+  EXPECT_NEAR(r.time, 1e-3, 1e-15);
+  ASSERT_FALSE(samples.empty());
+  EXPECT_NEAR(samples.back().com.z(), 2.5 - 0.5 * kG * 1e-6, 1e-12);
+}
+
 }  // namespace
 }  // namespace repose

@@ -383,10 +383,9 @@ inline Outcome run_case(const Case& c, const Particle& p) {
         break;
       }
     // The rest pose is where the motion took the particle: from the last moving sample, one step (at most
-    // about |ω|·dt) and the flush alignment of a face whose points all touch within 1e-9·L. A smooth
-    // particle may rest by its energy with its bottom facet up to 0.01 rad from flush (the engine's
-    // kSmoothRestTilt), which the alignment then closes.
-    const double reach = 1.5 * omega_prev * r.dt + 1e-6 + (r.smooth ? 0.01 : 0.0);
+    // about |ω|·dt) and the flush alignment of a face whose points all touch within 1e-9·L; smooth
+    // particles too (they rest only by landing on three points of their bottom facet).
+    const double reach = 1.5 * omega_prev * r.dt + 1e-6;
     if (o.rest_snap > reach)
       fail("rest pose is a " + num17(o.rest_snap) +
            " rad rotation from the last moving state (one step turns ≤ " + num17(reach) +

@@ -36,8 +36,6 @@ struct SettleParams {
   long max_steps = 20'000'000;  ///< step limit
   double quaternion_tolerance = 1e-8;  ///< convergence of the pseudo-time iteration (Eqs 12-16)
   int max_iterations = 100;            ///< bound on pseudo-time iterations per step
-  /// A smooth particle rests once its kinetic energy stays below this fraction of m·g·L.
-  double smooth_rest_energy = 1e-9;
 };
 
 /// Throws repose::Error naming the offending parameter if any is non-finite or out of range.
