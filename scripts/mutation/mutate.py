@@ -65,6 +65,7 @@ def mutants_of(rel_path, text):
     """Every mutant of one source file: dicts with a stable key (file, operator, line text, occurrence)."""
     lines = text.split("\n")
     result, in_block_comment = [], False
+    seen = {}  # stripped line text -> how many times it has occurred so far
     for number, line in enumerate(lines, start=1):
         stripped = line.strip()
         if in_block_comment:
@@ -76,13 +77,19 @@ def mutants_of(rel_path, text):
         if SKIP_LINE.search(line):
             continue
         masked = blank_literals_and_comments(line)
+        repeat = seen.get(stripped, 0)
+        seen[stripped] = repeat + 1
         for name, pattern, replacement in OPERATORS:
             for occurrence, match in enumerate(re.finditer(pattern, masked)):
                 new_text = match.expand(replacement) if isinstance(replacement, str) else replacement(match)
                 mutated = line[: match.start()] + new_text + line[match.end() :]
                 if mutated == line:
                     continue
-                digest = hashlib.sha1(f"{rel_path}|{name}|{line.strip()}|{occurrence}".encode()).hexdigest()
+                # The key names the line by its text (stable when other lines move); an identical line
+                # seen before in the file gets its repeat count, so each copy is a mutant of its own.
+                ident = f"{rel_path}|{name}|{line.strip()}|{occurrence}"
+                ident += f"|{repeat}" if repeat else ""
+                digest = hashlib.sha1(ident.encode()).hexdigest()
                 result.append({"key": digest[:12], "file": rel_path, "line": number, "operator": name,
                                "original": line.strip(), "mutated": mutated.strip(), "text": mutated})
     return result
