@@ -18,6 +18,7 @@
 
 #include "contact.hpp"
 #include "dynamics.hpp"
+#include "impact_support.hpp"
 #include "repose/error.hpp"
 #include "stability.hpp"
 
@@ -113,9 +114,10 @@ struct Settler::Impl {
   bool has_prev_axis = false;
   Vec3 prev_axis = Vec3::UnitX();
   ContactType type = ContactType::free_fall;
-  std::vector<double> z;      // world heights of the hull vertices
-  std::vector<int> contact;   // hull vertices within ε
-  std::vector<int> touching;  // hull vertices on the wall
+  std::vector<double> z;            // world heights of the hull vertices
+  std::vector<int> contact;         // hull vertices within ε
+  std::vector<int> touching;        // hull vertices on the wall
+  std::vector<sim::Touch> touches;  // scratch, the touching vertices for the impact rule
   std::vector<Vec3>
       contact_points;  // scratch, world coordinates of `contact` (kept to avoid allocating per step)
   std::vector<Vec3> footprints;       // scratch, their projections on the wall
@@ -471,53 +473,20 @@ struct Settler::Impl {
       next.axis = axis.normalized();
     };
 
-    // Several points on the wall: tip about the feature of their polygon nearest the centre of mass, unless
-    // the motion just after the impact would drive another touching point into the wall; then the first
-    // feature (edges before corners) that lets every other touching point separate, or failing that (or when
-    // the run has stalled on ever-shorter steps) the nearest edge, which keeps both its ends on the wall.
-    auto choose_from_touching = [&] {
-      const std::vector<Vec2> poly = touching_polygon();
-      const sim::ClosestFeature nearest = sim::closest_feature(poly, g);
-      std::vector<sim::ClosestFeature> candidates = {nearest};
-      const int n = static_cast<int>(poly.size());
-      for (int i = 0; i < (n == 2 ? 1 : n); ++i) candidates.push_back({i, (i + 1) % n});
-      for (int i = 0; i < n; ++i) candidates.push_back({i, -1});
-      auto make = [&](const sim::ClosestFeature& f) {
-        const int a = nearest_touching(poly[f.i]);
-        if (f.j < 0) {
-          point_at(a);
-        } else {
-          // The edge joins two points on the wall: a horizontal hinge, whatever round-off says.
-          Vec3 edge = world_vertex(nearest_touching(poly[f.j])) - world_vertex(a);
-          edge.z() = 0;
-          line_at(a, edge);
-        }
-      };
-      if (stalled_steps < kStallLimit) {
-        for (const sim::ClosestFeature& f : candidates) {
-          make(f);
-          if (others_separate(next, sim::momentum_after_switch(body, q, com, omega, com_velocity, next)))
-            return;
-        }
-      }
-      make(nearest.j >= 0 || n < 2 ? nearest : sim::ClosestFeature{nearest.i, (nearest.i + 1) % n});
+    // Several points on the wall: the support that lets the others lift off (impact_support.hpp).
+    const sim::Impact impact{body, q, com, omega, com_velocity, length, touch_tol, dt};
+    touches.clear();
+    for (int k : touching) touches.push_back({k, world_vertex(k), particle.hull.vertices[k], z[k]});
+    auto take = [&](const sim::SupportChoice& c) {
+      next = c.support;
+      next_vertex = c.vertex;
     };
+    const bool second_guess = stalled_steps < kStallLimit;
 
     if (smooth) {
-      // Always about the single lowest point: the most recent touch, else the current support; but if that
-      // would drive the other touching point into the wall (rocking on an edge of the discretised surface),
-      // about the touching points together.
-      int lowest = support_vertex;
-      double deepest = INFINITY;
-      for (int k : touching)
-        if (k != support_vertex && z[k] < deepest) {
-          deepest = z[k];
-          lowest = k;
-        }
-      point_at(lowest);
-      if (touching.size() >= 2 &&
-          !others_separate(next, sim::momentum_after_switch(body, q, com, omega, com_velocity, next)))
-        choose_from_touching();
+      const sim::Touch current{support_vertex, world_vertex(support_vertex),
+                               particle.hull.vertices[support_vertex], z[support_vertex]};
+      take(sim::choose_smooth(impact, touches, current, g, second_guess));
     } else if (touching.size() <= 1) {
       // One point on the wall: the paper's kinematics from the contact set (Algorithm 1), a rotation about
       // the best-fit line for a line contact, about the previous axis for a surface contact.
@@ -541,7 +510,7 @@ struct Settler::Impl {
         point_at(o);
       }
     } else {
-      choose_from_touching();
+      take(sim::choose_from_touching(impact, touches, g, second_guess));
     }
 
     const bool same = next_vertex == support_vertex && next.line == support.line &&
@@ -593,32 +562,6 @@ struct Settler::Impl {
     const Vec3 arm = lever.cross(Vec3::UnitZ());
     if (arm.squaredNorm() == 0) return false;
     return -normal_part.dot(arm) >= 0;  // the force needed at the hovering points is upward
-  }
-
-  // Whether, rotating about `next` with angular momentum `momentum` right after an impact, every touching
-  // point off the support moves up (or, at rest, is accelerated up by gravity).
-  bool others_separate(const sim::Support& next, const Vec3& momentum) const {
-    const Vec3 w = sim::omega_from_momentum(body, next, q, momentum);
-    const Mat3 inertia = sim::inertia_about_support(body, next, q);
-    const Vec3 m = sim::moment(body, next, q, w);  // weight and damping
-    // Euler's equation about a fixed point, d(I_O ω)/dt = M, with its gyroscopic term ω × I_O ω (which
-    // vanishes for a rotation about a fixed axis).
-    const Vec3 alpha = next.line ? Vec3(m.dot(next.axis) / next.axis.dot(inertia * next.axis) * next.axis)
-                                 : Vec3(inertia.ldlt().solve(m - w.cross(inertia * w)));
-    const double v_tol = 1e-9 * std::sqrt(params.gravity * length);
-    const double a_tol = 1e-9 * params.gravity;
-    for (int k : touching) {
-      Vec3 r = world_vertex(k) - next.world;
-      if (next.line) r -= r.dot(next.axis) * next.axis;
-      if (r.norm() <= touch_tol) continue;  // on the support
-      const double vz = w.cross(r).z();
-      const double az = (alpha.cross(r) + w.cross(w.cross(r))).z();
-      if (vz < -v_tol || (vz <= v_tol && az < -a_tol)) return false;
-      // Rising, but pulled back within a tenth of a step: it would be on the wall again at once (a ping-pong
-      // of near-empty steps), so it does not count as separating.
-      if (az < -a_tol && 2 * vz / -az < 0.1 * dt) return false;
-    }
-    return true;
   }
 
   void remember_axis(const Vec3& omega) {

@@ -1,0 +1,109 @@
+// The support after an impact that leaves several points on the wall, against hand computation. Internal
+// header: the engine's building block, tested on its own.
+//
+// The hand computation: with no spin before the impact (ω = 0) and centre-of-mass velocity v, the angular
+// momentum about a new support point P is m·r × v (r = G − P), conserved by the impact. About a line through
+// P along the horizontal unit vector e the rotation is ω' = ℓ/(eᵀ·I_P·e)·e with ℓ = e·(m·r × v) = m·v·(e ×
+// r), so a point T on the wall moves vertically at (ω' × (T − P))_z, whose sign is that of ℓ·(e × (T − P))_z:
+// the sign of a triple product, whatever the inertia. About a point P, with an isotropic body inertia k·1,
+// I_P = (k + m·|r|²)·1 − m·r·rᵀ and m·r × v ⟂ r, so ω' = (m·r × v)/(k + m·|r|²): T (at the wall's height)
+// moves vertically at a positive multiple of −D·(T − P), D = r_z·v_xy − v_z·r_xy (both in the wall plane).
+#include "../../src/sim/impact_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace repose::sim {
+namespace {
+
+Body test_body() {
+  Body b;
+  b.mass = 1;
+  b.inertia = 0.1 * Mat3::Identity();  // isotropic: see the file comment
+  b.gravity = 9.81;
+  return b;
+}
+
+// A touching point at world (x, y, height), body frame relative to the centre of mass `com` (q = 1).
+Touch touch(int vertex, double x, double y, double height, const Vec3& com) {
+  const Vec3 w(x, y, height);
+  return {vertex, w, w - com, height};
+}
+
+TEST(ImpactSupport, AFarSideEdgeIsChosenWhenTheNearestEdgeAndTheFirstEdgeWouldDriveAPointDown) {
+  // Touching points A (0, 0), B (2, 0), C (0, 2) (their polygon is A, B, C in that order), centre of mass
+  // G = (−0.2, 1, 1) just outside edge CA, arriving at v = (2, 0.5, −1) with no spin. By the file comment's
+  // triple products:
+  //   about CA (nearest; P = C, e = (0, −1, 0)): e × r = (−1, 0, −0.2), ℓ ∝ v·(e × r) = −1.8 < 0, and B moves
+  //     at the sign of ℓ·(e × (B − C))_z = ℓ·2: down;
+  //   about AB (the polygon's first edge; P = A, e = (1, 0, 0)): e × r = (0, −1, 1), ℓ ∝ −1.5, C moves at
+  //   ℓ·2:
+  //     down;
+  //   about BC (P = B, e = (−1, 1, 0)/√2): e × r = (1, 1, 1.2)/√2, ℓ ∝ 1.3 > 0, A moves at ℓ·2/√2: up.
+  // So the support is the line BC, through B.
+  const Body body = test_body();
+  const Vec3 com(-0.2, 1, 1);
+  const Impact impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3(2, 0.5, -1), 1.0, 1e-9, 1e-6};
+  const std::vector<Touch> touching = {touch(10, 0, 0, 0, com), touch(11, 2, 0, 0, com),
+                                       touch(12, 0, 2, 0, com)};
+  Support about_ca{touching[2].world, touching[2].body, true, Vec3(0, -1, 0)};
+  Support about_ab{touching[0].world, touching[0].body, true, Vec3(1, 0, 0)};
+  Support about_bc{touching[1].world, touching[1].body, true, Vec3(-1, 1, 0).normalized()};
+  EXPECT_FALSE(others_separate(impact, touching, about_ca));
+  EXPECT_FALSE(others_separate(impact, touching, about_ab));
+  EXPECT_TRUE(others_separate(impact, touching, about_bc));
+
+  const SupportChoice c = choose_from_touching(impact, touching, Vec2(com.x(), com.y()), true);
+  EXPECT_EQ(c.vertex, 11);
+  EXPECT_TRUE(c.support.line);
+  EXPECT_NEAR(std::abs(c.support.axis.dot(Vec3(-1, 1, 0).normalized())), 1.0, 1e-15);
+  EXPECT_EQ(c.support.axis.z(), 0.0);
+  // A run stalled on ever-shorter steps stops second-guessing: the nearest edge, CA (through C).
+  const SupportChoice stalled = choose_from_touching(impact, touching, Vec2(com.x(), com.y()), false);
+  EXPECT_EQ(stalled.vertex, 12);
+  EXPECT_TRUE(stalled.support.line);
+  EXPECT_NEAR(std::abs(stalled.support.axis.y()), 1.0, 1e-15);
+}
+
+TEST(ImpactSupport, FromRestTheNearestFeatureLetsTheOthersLiftOff) {
+  // No motion: only gravity, which acts like v = (0, 0, −1) in the file comment (D ∝ r_xy). The centre of
+  // mass G = (3, 0.5, 1) is beyond corner B (2, 0) of the triangle A (0, 0), B, C (0, 2) (in B's normal cone:
+  // (G − B)·(A − B) = −2 < 0, (G − B)·(C − B) = −1 < 0), so the particle tips about B alone and A and C rise.
+  const Body body = test_body();
+  const Vec3 com(3, 0.5, 1);
+  const Impact impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3::Zero(), 1.0, 1e-9, 1e-6};
+  const std::vector<Touch> touching = {touch(0, 0, 0, 0, com), touch(1, 2, 0, 0, com),
+                                       touch(2, 0, 2, 0, com)};
+  const SupportChoice c = choose_from_touching(impact, touching, Vec2(com.x(), com.y()), true);
+  EXPECT_EQ(c.vertex, 1);
+  EXPECT_FALSE(c.support.line);
+  EXPECT_EQ(c.support.world, touching[1].world);
+}
+
+TEST(ImpactSupport, ASmoothParticlePivotsOnItsLowestNewTouch) {
+  // Current support C0 (0, 1) and two new touches, A (0, 0) 2e-12 below the wall and
+  // B (1, 0) 1e-12 below: the pivot is the lowest, A, listed between the others so that list order cannot
+  // pass for depth. Centre of mass G = (0.6, 0.6, 1), arriving at v = (−2, −2, −1): about A, D = r_z·v_xy −
+  // v_z·r_xy = (−2, −2) + (0.6, 0.6) = (−1.4, −1.4), and B − A = (1, 0), C0 − A = (0, 1) both have
+  // D·(T − A) < 0: both rise, so A alone is the support. (About B instead, D = (−2.4, −1.4) and A − B =
+  // (−1, 0) gives +2.4: A would be driven into the wall.)
+  const Body body = test_body();
+  const Vec3 com(0.6, 0.6, 1);
+  const Impact impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3(-2, -2, -1), 1.0, 1e-9, 1e-6};
+  const Touch current = touch(5, 0, 1, 0, com);
+  const std::vector<Touch> touching = {current, touch(6, 0, 0, -2e-12, com), touch(7, 1, 0, -1e-12, com)};
+  const SupportChoice c = choose_smooth(impact, touching, current, Vec2(com.x(), com.y()), true);
+  EXPECT_EQ(c.vertex, 6);
+  EXPECT_FALSE(c.support.line);
+  Support about_b{touching[2].world, touching[2].body, false, Vec3::UnitX()};
+  EXPECT_FALSE(others_separate(impact, touching, about_b));
+  // Alone on the wall, the current support stays the pivot.
+  const SupportChoice alone = choose_smooth(impact, {current}, current, Vec2(com.x(), com.y()), true);
+  EXPECT_EQ(alone.vertex, 5);
+  EXPECT_FALSE(alone.support.line);
+}
+
+}  // namespace
+}  // namespace repose::sim
