@@ -80,5 +80,24 @@ TEST(FreeFall, AStepLimitOfOneStopsAfterExactlyOneStepOfTheFall) {
   EXPECT_NEAR(samples.back().com.z(), 2.5 - 0.5 * kG * 1e-6, 1e-12);
 }
 
+TEST(FreeFall, ATimeLimitInsideTheFallStopsItExactlyThere) {
+  // --max-time 0.0105 s with dt = 1 ms, dropped from 2 cm: ten whole steps, then a last one cut to 0.5 ms, so
+  // the run stops at exactly the limit (status max_time) with the centre of mass on the ballistic arc,
+  // h + ½ − ½·g·t² (closed form, 1e-12).
+  const Particle cube = load_particle("box:x=1,y=1,z=1", 1.0);
+  SettleParams p;
+  p.gravity = kG;
+  p.drop_height = 2.0;
+  p.dt = 1e-3;
+  p.max_time = 0.0105;
+  std::vector<Sample> samples;
+  const SettleResult r = settle(cube, p, Quat::Identity(), [&](const Sample& s) { samples.push_back(s); });
+  EXPECT_EQ(r.status, Status::max_time);
+  EXPECT_NEAR(r.time, 0.0105, 1e-15);
+  EXPECT_EQ(r.steps, 11);
+  ASSERT_FALSE(samples.empty());
+  EXPECT_NEAR(samples.back().com.z(), 2.5 - 0.5 * kG * 0.0105 * 0.0105, 1e-12);
+}
+
 }  // namespace
 }  // namespace repose

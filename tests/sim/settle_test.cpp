@@ -330,6 +330,23 @@ TEST(FreeFall, TiltedDropNeverPenetratesAndLosesEnergyAtImpact) {
   EXPECT_LT(r.result.energy_end, r.result.energy_start);
 }
 
+// The count of steps whose pseudo-time iteration hit its bound (SettleResult::unconverged_steps): none at the
+// defaults (the iteration converges in a few passes), and every rotation step with a bound of one pass (the
+// iteration never stops before its second pass, docs/method.md). A cube tilted 0.3 rad on an edge, touching
+// from rest: no fall, so every step is a rotation step.
+TEST(PseudoTimeIteration, StepsThatHitTheIterationBoundAreCounted) {
+  const Particle cube = load_particle("box:x=1,y=1,z=1", 2.0);
+  SettleParams p = cgs_params();
+  const Quat tilt = parse_orientation("axis-angle:1,0,0,0.3");
+  const SettleResult converged = settle(cube, p, tilt);
+  ASSERT_EQ(converged.status, Status::rest);
+  EXPECT_EQ(converged.unconverged_steps, 0);
+  p.max_iterations = 1;
+  const SettleResult bounded = settle(cube, p, tilt);
+  EXPECT_GT(bounded.steps, 10);
+  EXPECT_EQ(bounded.unconverged_steps, bounded.steps);
+}
+
 // ---- irregular particles
 // -------------------------------------------------------------------------------------
 
