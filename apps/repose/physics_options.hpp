@@ -27,7 +27,7 @@ inline void add_physics_options(CLI::App& sub, PhysicsOptions& o, const std::str
   sub.add_option("--units", o.units, "si (m, kg, s; g = 9.81) or cgs (cm, g, s; g = 981)")
       ->check(CLI::IsMember({"si", "cgs"}));
   sub.add_option("--damping", o.params.damping, damping_help);
-  sub.add_option("--dt", o.params.dt, "Time step (default 1e-3*sqrt(L/g))");
+  sub.add_option("--dt", o.params.dt, "Time step (0 or unset: automatic, 1e-3*sqrt(L/g))");
   sub.add_option("--contact-threshold", o.params.contact_threshold,
                  "Contact threshold as a fraction of L (default 0.05, as in the paper)");
   sub.add_option("--line-threshold", o.params.line_threshold,
@@ -37,7 +37,8 @@ inline void add_physics_options(CLI::App& sub, PhysicsOptions& o, const std::str
   sub.add_option("--drop-height", o.params.drop_height,
                  "Initial height of the lowest point above the wall (default 0: touching, at rest)");
   sub.add_option("--drop-speed", o.params.drop_speed, "Initial downward speed (default 0)");
-  sub.add_option("--max-time", o.params.max_time, "Simulated-time limit per run (default 2000*sqrt(L/g))");
+  sub.add_option("--max-time", o.params.max_time,
+                 "Simulated-time limit per run (0 or unset: automatic, 2000*sqrt(L/g) plus the fall time)");
   sub.add_option("--max-steps", o.params.max_steps, "Step limit per run (default 2e7)");
 }
 

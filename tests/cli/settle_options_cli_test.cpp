@@ -167,6 +167,21 @@ TEST_F(SettleOptionsCli, MaxTimeExitsThreeAtThatTime) {
   EXPECT_EQ(parse_json(run_cli(tetra + " --max-time 0.1 --json"))["status"], "rest");
 }
 
+TEST_F(SettleOptionsCli, ZeroStepAndTimeLimitMeanAutomatic) {
+  // --dt 0 and --max-time 0 are the documented "automatic" values (--help): dt = 1e-3·sqrt(L/g) and a limit
+  // of 2000·sqrt(L/g) (no fall here): the same run as without them, to the bit.
+  const std::string tetra =
+      "settle tetrahedron:edge=1 --units cgs --orientation axis-angle:1,0.3,0,2.5 --json";
+  const json plain = parse_json(run_cli(tetra));
+  const json zero = parse_json(run_cli(tetra + " --dt 0 --max-time 0"));
+  const double scale = std::sqrt(kTetraLength / 981.0);
+  EXPECT_NEAR(plain["parameters"]["dt"].get<double>(), 1e-3 * scale, 1e-15);
+  EXPECT_EQ(zero["parameters"]["dt"], plain["parameters"]["dt"]);
+  EXPECT_EQ(zero["time"], plain["time"]);
+  EXPECT_EQ(zero["steps"], plain["steps"]);
+  EXPECT_THAT(run_cli("settle --help").out, HasSubstr("0 or unset: automatic, 1e-3*sqrt(L/g)"));
+}
+
 // ---------------------------------------------------------------------------------------------------------
 // --damping
 
