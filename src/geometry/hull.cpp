@@ -80,6 +80,41 @@ int ConvexHull::support_vertex(const Vec3& direction) const {
   return best;
 }
 
+int ConvexHull::support_vertex_from(const Vec3& direction, int start) const {
+  int at = start;
+  double value = direction.dot(vertices[static_cast<std::size_t>(at)]);
+  // Strictly uphill: every move raises the value, so the walk ends (at most once per vertex).
+  for (bool moved = true; moved;) {
+    moved = false;
+    for (int n : neighbors[static_cast<std::size_t>(at)]) {
+      const double v = direction.dot(vertices[static_cast<std::size_t>(n)]);
+      if (v > value) {
+        at = n;
+        value = v;
+        moved = true;
+        break;
+      }
+    }
+  }
+  return at;
+}
+
+void ConvexHull::vertices_at_least(const Vec3& direction, double level, int top, std::vector<int>& out,
+                                   std::vector<char>& visited) const {
+  const std::size_t first = out.size();
+  if (direction.dot(vertices[static_cast<std::size_t>(top)]) < level) return;
+  out.push_back(top);
+  visited[static_cast<std::size_t>(top)] = 1;
+  for (std::size_t i = first; i < out.size(); ++i)
+    for (int n : neighbors[static_cast<std::size_t>(out[i])]) {
+      if (visited[static_cast<std::size_t>(n)]) continue;
+      if (direction.dot(vertices[static_cast<std::size_t>(n)]) < level) continue;
+      visited[static_cast<std::size_t>(n)] = 1;
+      out.push_back(n);
+    }
+  for (std::size_t i = first; i < out.size(); ++i) visited[static_cast<std::size_t>(out[i])] = 0;
+}
+
 ConvexHull compute_convex_hull(const std::vector<Vec3>& points) {
   if (points.size() < 4) {
     throw Error("convex hull: need at least 4 points, got " + std::to_string(points.size()));
@@ -196,6 +231,12 @@ ConvexHull compute_convex_hull(const std::vector<Vec3>& points) {
     face.loop = std::move(loop);
     hull.faces.push_back(std::move(face));
   }
+  // Each edge is a → b in one face's counter-clockwise loop and b → a in its neighbour's: taking the
+  // directed edges gives every vertex each neighbour once.
+  hull.neighbors.assign(hull.vertices.size(), {});
+  for (const HullFace& face : hull.faces)
+    for (std::size_t k = 0; k < face.loop.size(); ++k)
+      hull.neighbors[static_cast<std::size_t>(face.loop[k])].push_back(face.loop[(k + 1) % face.loop.size()]);
   return hull;
 }
 

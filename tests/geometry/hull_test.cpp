@@ -9,9 +9,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "repose/error.hpp"
 #include "repose/geometry/mass.hpp"
@@ -159,6 +161,63 @@ TEST(ConvexHull, SupportVertex) {
     EXPECT_EQ(dir.dot(hull.vertices[static_cast<std::size_t>(s)]), best);
   }
   EXPECT_EQ(ConvexHull{}.support_vertex(Vec3::UnitZ()), -1);
+}
+
+// max − min of direction·v over the hull's vertices.
+double hull_extent(const ConvexHull& hull, const Vec3& dir) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (const Vec3& p : hull.vertices) {
+    lo = std::min(lo, dir.dot(p));
+    hi = std::max(hi, dir.dot(p));
+  }
+  return hi - lo;
+}
+
+// The edge graph against Euler's formula V − E + F = 2 (a convex polytope with planar faces), and the
+// walking queries against a scan of every vertex: the furthest vertex's value exactly (a plateau may give
+// another vertex of the same value), the superlevel set exactly (as a set), from every kind of start.
+TEST(ConvexHull, EdgeGraphWalksAgreeWithAScan) {
+  for (const char* shape : {"box:x=1,y=2,z=3", "tetrahedron:edge=1", "cylinder:r=0.5,h=1,n=64",
+                            "ellipsoid:a=1,b=0.7,c=0.5", "irregular:seed=9"}) {
+    SCOPED_TRACE(shape);
+    const ConvexHull hull = compute_convex_hull(make_shape(shape).vertices);
+    const std::size_t nv = hull.vertices.size();
+    ASSERT_EQ(hull.neighbors.size(), nv);
+    std::size_t ends = 0;
+    for (std::size_t v = 0; v < nv; ++v) {
+      ends += hull.neighbors[v].size();
+      EXPECT_GE(hull.neighbors[v].size(), 3u);  // a polytope's vertex has at least three edges
+      for (int n : hull.neighbors[v]) {         // symmetric
+        const auto& back = hull.neighbors[static_cast<std::size_t>(n)];
+        EXPECT_EQ(std::count(back.begin(), back.end(), static_cast<int>(v)), 1);
+      }
+    }
+    ASSERT_EQ(ends % 2, 0u);
+    EXPECT_EQ(static_cast<long>(nv) - static_cast<long>(ends / 2) + static_cast<long>(hull.faces.size()), 2);
+
+    std::vector<char> visited(nv, 0);
+    for (int k = 0; k < 40; ++k) {
+      const Vec3 dir(std::cos(0.37 * k) * std::cos(0.23 * k), std::sin(0.37 * k) * std::cos(0.23 * k),
+                     std::sin(0.23 * k));
+      double best = -INFINITY;
+      for (const Vec3& p : hull.vertices) best = std::max(best, dir.dot(p));
+      const int start = static_cast<int>((7919u * static_cast<unsigned>(k)) % nv);
+      const int top = hull.support_vertex_from(dir, start);
+      EXPECT_EQ(dir.dot(hull.vertices[static_cast<std::size_t>(top)]), best);
+      // Levels from the top down to below the bottom: the walk's set is the scan's set.
+      for (double fraction : {0.0, 0.01, 0.2, 0.7, 2.5}) {
+        const double level = best - fraction * hull_extent(hull, dir);
+        std::vector<int> walked;
+        hull.vertices_at_least(dir, level, top, walked, visited);
+        std::vector<int> scanned;
+        for (std::size_t v = 0; v < nv; ++v)
+          if (dir.dot(hull.vertices[v]) >= level) scanned.push_back(static_cast<int>(v));
+        std::sort(walked.begin(), walked.end());
+        EXPECT_EQ(walked, scanned) << "direction " << k << ", fraction " << fraction;
+      }
+      EXPECT_EQ(std::count(visited.begin(), visited.end(), 1), 0);  // scratch left clean
+    }
+  }
 }
 
 TEST(ConvexHull, RejectsDegenerateInput) {

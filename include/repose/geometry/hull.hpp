@@ -20,9 +20,23 @@ struct ConvexHull {
   std::vector<Vec3> vertices;     ///< the hull's vertices (a subset of the input points)
   std::vector<int> source_index;  ///< index of each hull vertex in the input point set
   std::vector<HullFace> faces;
+  /// The edge graph: per vertex, the vertices joined to it by an edge of a (merged, planar) face.
+  std::vector<std::vector<int>> neighbors;
 
-  /// Index (into `vertices`) of the vertex furthest along `direction`.
+  /// Index (into `vertices`) of the vertex furthest along `direction` (a scan of every vertex).
   int support_vertex(const Vec3& direction) const;
+
+  /// The same, found by walking the edge graph uphill from vertex `start`: on a convex polytope a vertex
+  /// no neighbour of which is further along `direction` is furthest of all. The cost is the vertices on the
+  /// way (a few when `start` is the previous answer of a slowly turning direction), not the hull's size.
+  int support_vertex_from(const Vec3& direction, int start) const;
+
+  /// Appends to `out` every vertex v with direction·v ≥ level, found by a walk over the edge graph from the
+  /// furthest vertex `top` (support_vertex_from): those vertices are connected (from each of them an edge
+  /// path that only rises leads to `top`), so the cost is the set and its border, not the hull's size.
+  /// `visited` is scratch of vertices.size() entries, all false on entry and on return.
+  void vertices_at_least(const Vec3& direction, double level, int top, std::vector<int>& out,
+                         std::vector<char>& visited) const;
 };
 
 /// Convex hull of `points` (qhull, reentrant C API). Hull triangles that qhull finds coplanar within
