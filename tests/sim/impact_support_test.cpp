@@ -80,6 +80,12 @@ TEST(ImpactSupport, FromRestTheNearestFeatureLetsTheOthersLiftOff) {
   EXPECT_EQ(c.vertex, 1);
   EXPECT_FALSE(c.support.line);
   EXPECT_EQ(c.support.world, touching[1].world);
+  // Without second-guessing (a stalled run), the fallback keeps two points on the wall: from the nearest
+  // corner B, the polygon's next edge, B → C (both edges at B are at the corner's distance from G).
+  const SupportChoice stalled = choose_from_touching(impact, touching, Vec2(com.x(), com.y()), false);
+  EXPECT_EQ(stalled.vertex, 1);
+  EXPECT_TRUE(stalled.support.line);
+  EXPECT_NEAR(std::abs(stalled.support.axis.dot(Vec3(-1, 1, 0).normalized())), 1.0, 1e-15);
 }
 
 TEST(ImpactSupport, ASmoothParticlePivotsOnItsLowestNewTouch) {
