@@ -295,8 +295,13 @@ def main():
     ap.add_argument("--commit", default=None, help="mutate this commit's tree (default: the working tree)")
     args = ap.parse_args()
 
-    files = source_files(args.paths)
     sources = tree_files(args.commit)
+    if args.commit:  # that commit's files under the paths (they may differ from the working tree's)
+        prefixes = [p.rstrip("/") for p in args.paths]
+        files = sorted(f for f in sources if f.startswith("src/") and f.endswith(".cpp") and
+                       any(f == p or f.startswith(p + "/") for p in prefixes))
+    else:
+        files = source_files(args.paths)
     mutants = [m for f in files for m in mutants_of(f, sources[f].decode()) if sampled(m, args.sample, args.seed)]
     command = "scripts/mutate.sh " + " ".join(
         ([f"--sample {args.sample} --seed {args.seed}"] if args.sample < 1 else []) + args.paths)
