@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -128,6 +129,47 @@ TEST(MeshValidate, WeldToleranceIsRelativeToSize) {
     EXPECT_EQ(validate_mesh(near, "near").welded_vertices, 28) << scale;
     EXPECT_THAT(validation_error(far), HasSubstr("open surface")) << scale;
   }
+}
+
+TEST(MeshValidate, JitteredCopiesWeldAcrossGridCells) {
+  // A latitude-longitude sphere as a soup, every vertex record moved by its own pseudo-random offset of at
+  // most 0.25·tol in each coordinate (tol = 1e-10·D, the weld distance; D = the bounding-box diagonal, 2√3):
+  // copies of one vertex are then within 0.5·√3·tol ≈ 0.87·tol of each other and must weld, whichever side
+  // of a weld-grid cell boundary (cells 4·tol wide) each falls on; distinct vertices are ≥ 0.07 apart. Any
+  // copy left unwelded would leave the surface open.
+  const int nu = 40, nv = 20;
+  const double pi = std::acos(-1.0);
+  TriangleMesh sphere;
+  sphere.vertices.emplace_back(0, 0, 1);
+  for (int k = 1; k < nv; ++k)
+    for (int i = 0; i < nu; ++i) {
+      const double theta = pi * k / nv, phi = 2 * pi * i / nu;
+      sphere.vertices.emplace_back(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                                   std::cos(theta));
+    }
+  sphere.vertices.emplace_back(0, 0, -1);
+  const std::int32_t south = nu * (nv - 1) + 1;
+  auto ring = [&](int k, int i) { return 1 + (k - 1) * nu + i % nu; };
+  for (int i = 0; i < nu; ++i) {
+    sphere.triangles.push_back({0, ring(1, i), ring(1, i + 1)});
+    sphere.triangles.push_back({south, ring(nv - 1, i + 1), ring(nv - 1, i)});
+    for (int k = 1; k < nv - 1; ++k) {
+      sphere.triangles.push_back({ring(k, i), ring(k + 1, i), ring(k + 1, i + 1)});
+      sphere.triangles.push_back({ring(k, i), ring(k + 1, i + 1), ring(k, i + 1)});
+    }
+  }
+  TriangleMesh m = soup(sphere);
+  const double tol = 1e-10 * 2 * std::sqrt(3.0);
+  std::uint64_t state = 12345;
+  auto uniform = [&] {  // a 64-bit LCG (Knuth's MMIX constants), top 53 bits: [0, 1)
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(state >> 11) * 0x1p-53;
+  };
+  for (Vec3& p : m.vertices)
+    for (int c = 0; c < 3; ++c) p[c] += 0.25 * tol * (2 * uniform() - 1);
+  const MeshReport r = validate_mesh(m, "jittered sphere");
+  EXPECT_EQ(m.vertices.size(), sphere.vertices.size());
+  EXPECT_EQ(r.welded_vertices, static_cast<int>(3 * sphere.triangles.size() - sphere.vertices.size()));
 }
 
 TEST(MeshValidate, RemovesDegenerateTrianglesAndUnusedVertices) {
