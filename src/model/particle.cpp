@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
 #include "repose/error.hpp"
 #include "repose/geometry/shapes.hpp"
@@ -13,8 +14,11 @@ namespace repose {
 double characteristic_length(double volume) { return std::cbrt(6.0 * volume / std::numbers::pi); }
 
 Particle make_particle(TriangleMesh mesh, const std::string& name, double density) {
-  if (!std::isfinite(density) || density <= 0)
-    throw Error(name + ": density must be a finite positive number, got " + std::to_string(density));
+  if (!std::isfinite(density) || density <= 0) {
+    std::ostringstream msg;
+    msg << name << ": density must be a finite positive number, got " << density;
+    throw Error(msg.str());
+  }
   Particle p;
   p.name = name;
   p.report = validate_mesh(mesh, name);

@@ -8,6 +8,7 @@
 #include <repose/model/orientation.hpp>
 #include <repose/model/particle.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace repose {
@@ -83,6 +84,20 @@ TEST(FaceIsFlat, OnlyHullFacesTheMeshCoversWhollyAreSurfaces) {
     const bool cap = std::abs(normal.z()) > 0.5;
     const bool notch = normal.x() > 0.1 && normal.y() > 0.1;  // (1, 1)/√2
     EXPECT_EQ(l.face_is_flat[f], !cap && !notch) << "hull face with normal " << normal.transpose();
+  }
+}
+
+// A density that is not a finite positive number is refused before any work, naming the particle.
+TEST(ParticleValidation, ADensityThatIsNotFinitePositiveIsRefusedNamingTheParticle) {
+  for (const auto& [density, shown] : std::vector<std::pair<double, std::string>>{
+           {0.0, "0"}, {-2.5, "-2.5"}, {std::nan(""), "nan"}, {INFINITY, "inf"}}) {
+    try {
+      load_particle("box:x=1,y=1,z=1", density);
+      ADD_FAILURE() << shown << " accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()),
+                "box:x=1,y=1,z=1: density must be a finite positive number, got " + shown);
+    }
   }
 }
 
