@@ -260,10 +260,11 @@ TEST(RestLandscape, MatchesTheNumericalGradientFlow) {
   // or tipping rules). The frequencies of the stable faces are binomial with the exact basin probabilities:
   // each must be within 4 standard deviations (plus half a count; a false alarm has probability ~6e-5 per
   // face). The numerical flow locates its events to round-off, so it should disagree with
-  // quasi_static_rest_face only on basin boundaries (measure zero); the brief's bar is ≥ 99 % agreement
-  // (measured: 100 % on all four). Rolling along every arc instead of crossing where the foot of the centre
-  // of mass lies beyond the edge (the brief's first rule) measured 84–95 % agreement on these grains, so this
-  // test tells the two apart.
+  // quasi_static_rest_face only on basin boundaries (measure zero): measured 20000/20000 on all four. The bar
+  // is ≤ 10 disagreements (99.95 %), room for a few samples within round-off of a boundary. Rolling along
+  // every arc instead of crossing where the foot of the centre of mass lies beyond the edge (the brief's
+  // first rule) measured 84–95 % agreement on these grains; a path that slides instead of crossing into one
+  // vertex's region (vertex 0) measured 19869/20000 on seed 3: this test tells them apart.
   const int samples = 20000;
   const double step = 0.05;
   for (const char* shape : {"irregular:seed=1", "irregular:seed=2", "irregular:seed=3", "box:x=1,y=2,z=3"}) {
@@ -292,7 +293,7 @@ TEST(RestLandscape, MatchesTheNumericalGradientFlow) {
           << shape << " face " << f;
       if (p > 0) ++stable;
     }
-    EXPECT_GE(agree, 0.99 * samples) << shape;
+    EXPECT_GE(agree, samples - 10) << shape;
     std::cout << shape << ": " << stable << " stable faces, numeric flow agrees on " << agree << "/"
               << samples << "\n";
   }
