@@ -55,8 +55,9 @@ SupportChoice choose_from_touching(const Impact& impact, const std::vector<Touch
                                    bool second_guess);
 
 /// A smooth particle turns about its single lowest point: the lowest touching point other than the current
-/// support's vertex `current` (the most recent touch), else that vertex; if that would drive another touching
-/// point into the wall (rocking on an edge of the discretised surface), as choose_from_touching.
+/// support's vertex `current` (the most recent touch; of equal heights the first listed), else that vertex;
+/// if that would drive another touching point into the wall (rocking on an edge of the discretised surface),
+/// as choose_from_touching.
 SupportChoice choose_smooth(const Impact& impact, const std::vector<Touch>& touching, const Touch& current,
                             const Vec2& g, bool second_guess);
 

@@ -105,6 +105,10 @@ TEST(ImpactSupport, ASmoothParticlePivotsOnItsLowestNewTouch) {
   EXPECT_FALSE(c.support.line);
   Support about_b{touching[2].world, touching[2].body, false, Vec3::UnitX()};
   EXPECT_FALSE(others_separate(impact, touching, about_b));
+  // Two new touches at exactly the same height: the first listed is "the lowest" (the engine lists touching
+  // points by vertex index, so the choice is deterministic).
+  const std::vector<Touch> tie = {current, touch(6, 0, 0, -2e-12, com), touch(7, 1, 0, -2e-12, com)};
+  EXPECT_EQ(choose_smooth(impact, tie, current, Vec2(com.x(), com.y()), true).vertex, 6);
   // Alone on the wall, the current support stays the pivot.
   const SupportChoice alone = choose_smooth(impact, {current}, current, Vec2(com.x(), com.y()), true);
   EXPECT_EQ(alone.vertex, 5);
