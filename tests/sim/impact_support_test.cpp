@@ -108,7 +108,9 @@ TEST(ImpactSupport, ASmoothParticlePivotsOnItsLowestNewTouch) {
   // Two new touches at exactly the same height: the first listed is "the lowest" (the engine lists touching
   // points by vertex index, so the choice is deterministic).
   const std::vector<Touch> tie = {current, touch(6, 0, 0, -2e-12, com), touch(7, 1, 0, -2e-12, com)};
-  EXPECT_EQ(choose_smooth(impact, tie, current, Vec2(com.x(), com.y()), true).vertex, 6);
+  const SupportChoice first = choose_smooth(impact, tie, current, Vec2(com.x(), com.y()), true);
+  EXPECT_EQ(first.vertex, 6);
+  EXPECT_FALSE(first.support.line);  // A alone (B would fail, and the fallback hinges on the edge AB)
   // Alone on the wall, the current support stays the pivot.
   const SupportChoice alone = choose_smooth(impact, {current}, current, Vec2(com.x(), com.y()), true);
   EXPECT_EQ(alone.vertex, 5);
