@@ -43,6 +43,31 @@ TriangleMesh transformed(TriangleMesh m, double scale, const Vec3& offset) {
 }
 
 // The message of the repose::Error that validate_mesh throws ("" if it does not throw).
+// A latitude-longitude sphere of radius 1: nu meridians, nv − 1 rings between the poles, outward winding.
+TriangleMesh lat_long_sphere(int nu, int nv) {
+  const double pi = std::acos(-1.0);
+  TriangleMesh sphere;
+  sphere.vertices.emplace_back(0, 0, 1);
+  for (int k = 1; k < nv; ++k)
+    for (int i = 0; i < nu; ++i) {
+      const double theta = pi * k / nv, phi = 2 * pi * i / nu;
+      sphere.vertices.emplace_back(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                                   std::cos(theta));
+    }
+  sphere.vertices.emplace_back(0, 0, -1);
+  const std::int32_t south = nu * (nv - 1) + 1;
+  auto ring = [&](int k, int i) { return 1 + (k - 1) * nu + i % nu; };
+  for (int i = 0; i < nu; ++i) {
+    sphere.triangles.push_back({0, ring(1, i), ring(1, i + 1)});
+    sphere.triangles.push_back({south, ring(nv - 1, i + 1), ring(nv - 1, i)});
+    for (int k = 1; k < nv - 1; ++k) {
+      sphere.triangles.push_back({ring(k, i), ring(k + 1, i), ring(k + 1, i + 1)});
+      sphere.triangles.push_back({ring(k, i), ring(k + 1, i + 1), ring(k, i + 1)});
+    }
+  }
+  return sphere;
+}
+
 std::string validation_error(TriangleMesh m, const std::string& name = "part.stl") {
   try {
     validate_mesh(m, name);
@@ -138,26 +163,7 @@ TEST(MeshValidate, JitteredCopiesWeldAcrossGridCells) {
   // of a weld-grid cell boundary (cells 4·tol wide) each falls on; distinct vertices are ≥ 0.07 apart. Any
   // copy left unwelded would leave the surface open.
   const int nu = 40, nv = 20;
-  const double pi = std::acos(-1.0);
-  TriangleMesh sphere;
-  sphere.vertices.emplace_back(0, 0, 1);
-  for (int k = 1; k < nv; ++k)
-    for (int i = 0; i < nu; ++i) {
-      const double theta = pi * k / nv, phi = 2 * pi * i / nu;
-      sphere.vertices.emplace_back(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
-                                   std::cos(theta));
-    }
-  sphere.vertices.emplace_back(0, 0, -1);
-  const std::int32_t south = nu * (nv - 1) + 1;
-  auto ring = [&](int k, int i) { return 1 + (k - 1) * nu + i % nu; };
-  for (int i = 0; i < nu; ++i) {
-    sphere.triangles.push_back({0, ring(1, i), ring(1, i + 1)});
-    sphere.triangles.push_back({south, ring(nv - 1, i + 1), ring(nv - 1, i)});
-    for (int k = 1; k < nv - 1; ++k) {
-      sphere.triangles.push_back({ring(k, i), ring(k + 1, i), ring(k + 1, i + 1)});
-      sphere.triangles.push_back({ring(k, i), ring(k + 1, i + 1), ring(k, i + 1)});
-    }
-  }
+  const TriangleMesh sphere = lat_long_sphere(nu, nv);
   TriangleMesh m = soup(sphere);
   const double tol = 1e-10 * 2 * std::sqrt(3.0);
   std::uint64_t state = 12345;
@@ -268,27 +274,8 @@ TEST(MeshValidate, LargeSoupIsWeldedQuickly) {
   // A latitude-longitude sphere as a soup of 2·nu·(nv-1) triangles (about 120k vertex records): quadratic
   // welding would take minutes.
   const int nu = 200, nv = 100;
+  const TriangleMesh sphere = lat_long_sphere(nu, nv);
   const double pi = std::acos(-1.0);
-  TriangleMesh sphere;
-  sphere.vertices.emplace_back(0, 0, 1);
-  for (int k = 1; k < nv; ++k) {
-    for (int i = 0; i < nu; ++i) {
-      const double theta = pi * k / nv, phi = 2 * pi * i / nu;
-      sphere.vertices.emplace_back(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
-                                   std::cos(theta));
-    }
-  }
-  sphere.vertices.emplace_back(0, 0, -1);
-  const std::int32_t south = nu * (nv - 1) + 1;
-  auto ring = [&](int k, int i) { return 1 + (k - 1) * nu + i % nu; };
-  for (int i = 0; i < nu; ++i) {
-    sphere.triangles.push_back({0, ring(1, i), ring(1, i + 1)});
-    sphere.triangles.push_back({south, ring(nv - 1, i + 1), ring(nv - 1, i)});
-    for (int k = 1; k < nv - 1; ++k) {
-      sphere.triangles.push_back({ring(k, i), ring(k + 1, i), ring(k + 1, i + 1)});
-      sphere.triangles.push_back({ring(k, i), ring(k + 1, i + 1), ring(k, i + 1)});
-    }
-  }
   TriangleMesh m = soup(sphere);
   const MeshReport r = validate_mesh(m, "sphere");
   EXPECT_EQ(m.vertices.size(), sphere.vertices.size());
