@@ -13,6 +13,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "repose/error.hpp"
@@ -218,6 +219,25 @@ TEST(ConvexHull, EdgeGraphWalksAgreeWithAScan) {
       EXPECT_EQ(std::count(visited.begin(), visited.end(), 1), 0);  // scratch left clean
     }
   }
+}
+
+TEST(ConvexHull, FaceCentroidsAreAreaCentroids) {
+  // A prism over the trapezoid (0,0), (3,0), (2,1), (0,1), height 1. The caps' area centroid, by hand:
+  // area 2.5, ∫x dA = ∫₀¹ (3 − y)²/2 dy = 19/6, ∫y dA = ∫₀¹ y(3 − y) dy = 7/6, so (19/15, 7/15); not the
+  // vertex mean (1.25, 0.5). Exact up to round-off (1e-14).
+  std::vector<Vec3> points;
+  for (double z : {0.0, 1.0})
+    for (const auto& [x, y] : std::vector<std::pair<double, double>>{{0, 0}, {3, 0}, {2, 1}, {0, 1}})
+      points.emplace_back(x, y, z);
+  const ConvexHull hull = compute_convex_hull(points);
+  int caps = 0;
+  for (const HullFace& face : hull.faces) {
+    if (std::abs(face.normal.z()) < 0.5) continue;
+    ++caps;
+    EXPECT_NEAR(face.area, 2.5, 1e-14);
+    EXPECT_LT((face.centroid - Vec3(19.0 / 15, 7.0 / 15, face.normal.z() > 0 ? 1 : 0)).norm(), 1e-14);
+  }
+  EXPECT_EQ(caps, 2);
 }
 
 TEST(ConvexHull, RejectsDegenerateInput) {

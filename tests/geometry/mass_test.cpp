@@ -162,6 +162,11 @@ TEST(MassProperties, PrincipalAxesAreAProperRotation) {
     for (int i = 0; i < 3; ++i) {
       EXPECT_NEAR(diagonal(i, i), mp.principal_moments[i], 1e-12 * mp.principal_moments[2]);
     }
+    for (int j = 0; j < 2; ++j) {  // signs: each of the first two axes has its largest component positive
+      Eigen::Index k = 0;
+      axes.col(j).cwiseAbs().maxCoeff(&k);
+      EXPECT_GT(axes(k, j), 0) << "axis " << j;
+    }
     EXPECT_LE(mp.principal_moments[0], mp.principal_moments[1]);
     EXPECT_LE(mp.principal_moments[1], mp.principal_moments[2]);
   }

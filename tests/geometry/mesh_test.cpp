@@ -127,6 +127,8 @@ TEST(MeshValidate, SizeOutOfRangeIsRejected) {
   EXPECT_EQ(validation_error(transformed(unit_cube(), 1e-60, Vec3::Zero())),
             "part.stl: size out of range (bounding-box diagonal 1.73e-60; must be in [1e-50, 1e50])");
   EXPECT_EQ(validation_error(transformed(unit_cube(), 1e40, Vec3::Zero())), "");
+  EXPECT_EQ(validation_error(transformed(unit_cube(), 1e51, Vec3::Zero())),
+            "part.stl: size out of range (bounding-box diagonal 1.73e+51; must be in [1e-50, 1e50])");
   EXPECT_EQ(validation_error(transformed(unit_cube(), 1e-40, Vec3::Zero())), "");
 }
 
