@@ -4,7 +4,7 @@
 set -euo pipefail
 packages=(
   g++ cmake make pkg-config git
-  libeigen3-dev libcli11-dev nlohmann-json3-dev libqhull-dev libassimp-dev libtbb-dev librandom123-dev
+  libeigen3-dev libboost-dev libcli11-dev nlohmann-json3-dev libqhull-dev libassimp-dev libtbb-dev librandom123-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libbullet-dev  # bench/peers: the peer benchmark against Bullet 3.24 (double precision); builds without it too
   libopenmpi-dev openmpi-bin  # the MPI runner (mpirun -np K repose poses); builds without it too

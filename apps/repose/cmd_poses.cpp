@@ -124,6 +124,7 @@ CampaignOptions campaign_options(const PosesOptions& o, const CLI::App& sub, int
   s.params = o.physics.params;
   s.params.gravity = standard_gravity(o.physics.unit_system());
   s.params.smooth = o.physics.smooth_mode();
+  s.params.integrator = o.physics.integrator_kind();
   s.damping_given = given("--damping");
   if (!s.damping_given) s.params.damping = 0;  // set from the ratio once the particle is known
   validate(s.params);

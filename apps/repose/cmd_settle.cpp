@@ -99,6 +99,8 @@ RunSetup resolve_setup(const SettleOptions& o, const CLI::App& sub) {
   };
   take("--damping", p.damping, o.physics.params.damping);
   take("--dt", p.dt, o.physics.params.dt);
+  take("--tolerance", p.tolerance, o.physics.params.tolerance);
+  if (given("--integrator") || o.scenario.empty()) p.integrator = o.physics.integrator_kind();
   take("--contact-threshold", p.contact_threshold, o.physics.params.contact_threshold);
   take("--line-threshold", p.line_threshold, o.physics.params.line_threshold);
   take("--drop-height", p.drop_height, o.physics.params.drop_height);

@@ -12,7 +12,12 @@ struct PhysicsOptions {
   double density = 1.0;
   std::string units = "si";
   std::string smooth = "auto";
+  std::string integrator = "paper";
   SettleParams params;
+
+  Integrator integrator_kind() const {
+    return integrator == "adaptive" ? Integrator::adaptive : Integrator::paper;
+  }
 
   UnitSystem unit_system() const { return units == "cgs" ? UnitSystem::cgs : UnitSystem::si; }
   SmoothMode smooth_mode() const {
@@ -20,14 +25,22 @@ struct PhysicsOptions {
   }
 };
 
-/// Registers --density, --units, --damping (with `damping_help`), --dt, --contact-threshold,
+/// Registers --density, --units, --damping (with `damping_help`), --integrator, --dt, --tolerance, --contact-threshold,
 /// --line-threshold, --smooth, --drop-height, --drop-speed, --max-time and --max-steps on `sub`.
 inline void add_physics_options(CLI::App& sub, PhysicsOptions& o, const std::string& damping_help) {
   sub.add_option("--density", o.density, "Density (kg/m^3 in si, g/cm^3 in cgs; default 1)");
   sub.add_option("--units", o.units, "si (m, kg, s; g = 9.81) or cgs (cm, g, s; g = 981)")
       ->check(CLI::IsMember({"si", "cgs"}));
   sub.add_option("--damping", o.params.damping, damping_help);
-  sub.add_option("--dt", o.params.dt, "Time step (0 or unset: automatic, 1e-3*sqrt(L/g))");
+  sub.add_option("--integrator", o.integrator,
+                 "Rotation phases: paper (the paper's fixed step, default) or adaptive (Dormand-Prince 5(4) "
+                 "with events located on its dense output)")
+      ->check(CLI::IsMember({"paper", "adaptive"}));
+  sub.add_option("--dt", o.params.dt,
+                 "paper: the time step; adaptive: the longest step (0 or unset: automatic, 1e-3*sqrt(L/g) "
+                 "for paper, 0.05*sqrt(L/g) for adaptive)");
+  sub.add_option("--tolerance", o.params.tolerance,
+                 "adaptive: local error bound per step, relative to L and sqrt(L/g) (default 1e-11)");
   sub.add_option("--contact-threshold", o.params.contact_threshold,
                  "Contact threshold as a fraction of L (default 0.05, as in the paper)");
   sub.add_option("--line-threshold", o.params.line_threshold,

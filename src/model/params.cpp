@@ -36,6 +36,8 @@ void validate(const SettleParams& p) {
   require(p.max_steps > 0, "max-steps", static_cast<double>(p.max_steps), "positive");
   require(std::isfinite(p.quaternion_tolerance) && p.quaternion_tolerance > 0, "quaternion-tolerance",
           p.quaternion_tolerance, "a finite positive number");
+  require(std::isfinite(p.tolerance) && p.tolerance >= 1e-14 && p.tolerance <= 1e-3, "tolerance", p.tolerance,
+          "in [1e-14, 1e-3]");
   require(p.max_iterations > 0, "max-iterations", p.max_iterations, "positive");
 }
 

@@ -2,13 +2,12 @@
 
 namespace repose::sim {
 
-namespace {
-// dq/dt = ½ ω ⊗ q with ω in the world frame (Eq 9; q maps body to world).
 Eigen::Vector4d quaternion_rate(const Quat& q, const Vec3& w) {
   const Quat wq = Quat(0, w.x(), w.y(), w.z()) * q;
   return 0.5 * wq.coeffs();
 }
 
+namespace {
 Vec3 project_on_axis(const Support& s, const Vec3& v) { return s.line ? Vec3(v.dot(s.axis) * s.axis) : v; }
 }  // namespace
 

@@ -11,14 +11,17 @@
 #include "repose/sim/settle.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <numbers>
+#include <optional>
 
 #include "contact.hpp"
 #include "dynamics.hpp"
 #include "impact_support.hpp"
+#include "rotation_integrator.hpp"
 #include "repose/error.hpp"
 #include "stability.hpp"
 
@@ -78,6 +81,12 @@ constexpr int kStallLimit = 20;  // after this many near-empty steps, contact ch
 // falls from there. Ten times the touching tolerance, so round-off never puts it back on the balance; the
 // fall from an offset δ takes about ln(d/δ)/λ (d: centre of mass to edge, λ: the inverted pendulum's rate).
 constexpr double kBalanceOffset = 1e-8;
+// The adaptive integrator's automatic longest step (× sqrt(L/g)): contact decisions (line support, the paper's
+// stability test, the balance check) are re-evaluated at the end of every step.
+constexpr double kAdaptiveMaxStep = 0.05;
+// The adaptive step is searched for events at this many evenly spaced instants of its dense output, so a
+// vertex that dips below the wall and back up inside one step is still caught.
+constexpr int kEventSamples = 8;
 }  // namespace
 
 struct Settler::Impl {
@@ -92,6 +101,8 @@ struct Settler::Impl {
   double dt = 0;
   double max_time = 0;
   bool smooth = false;
+  bool adaptive = false;    // Integrator::adaptive
+  std::optional<sim::RotationIntegrator> integrator;
   double hull_radius = 0;   // largest distance of a hull vertex from the centre of mass
   double reach_radius = 0;  // largest distance of a hull vertex from the current support
 
@@ -107,6 +118,7 @@ struct Settler::Impl {
   sim::Support support;
   sim::Rotation rot;
   int support_vertex = -1;
+  bool restart = true;  // adaptive: the support or the motion changed, so the integrator starts afresh
   bool finishing = false;
   bool trace = std::getenv("REPOSE_TRACE") != nullptr;  // debugging aid: one line per step on stderr
   bool band_entered = true;  // a point entered the ε band in the last step (or contact just began)
@@ -145,7 +157,9 @@ struct Settler::Impl {
     event_tol = 1e-12 * length;
     rss_threshold = params.line_threshold * length * length;
     const double time_scale = std::sqrt(length / params.gravity);
-    dt = params.dt > 0 ? params.dt : 1e-3 * time_scale;
+    adaptive = params.integrator == Integrator::adaptive;
+    dt = params.dt > 0 ? params.dt : (adaptive ? kAdaptiveMaxStep : 1e-3) * time_scale;
+    if (adaptive) integrator.emplace(body, length, params.tolerance, dt);
     const double fall_time =
         (std::sqrt(params.drop_speed * params.drop_speed + 2 * params.gravity * params.drop_height)) /
         params.gravity;
@@ -226,6 +240,7 @@ struct Settler::Impl {
     reach_radius = hull_radius + support.body.norm();
     com = sim::com_position(support, q);
     rot = {q, Vec3::Zero(), Vec3::Zero()};
+    restart = true;
     update_contacts(Vec3::Zero(), com_velocity);
   }
 
@@ -256,6 +271,10 @@ struct Settler::Impl {
   }
 
   void rotate() {
+    if (adaptive) {
+      rotate_adaptive();
+      return;
+    }
     sim::Rotation next;
     // The last step is shortened so a run never passes its time limit.
     const double h = std::min(dt, max_time - t);
@@ -320,6 +339,90 @@ struct Settler::Impl {
     // Without an event the step ends at next.q, whose heights are already known.
     if (!event) z.swap(next_z);
     update_contacts(omega_before, omega_before.cross(com - support.world), /*heights_known=*/!event);
+  }
+
+  // One adaptive step (or the part of it before the first event), then the contact update at its end.
+  void rotate_adaptive() {
+    if (restart) {
+      integrator->start(support, rot, t, std::min(dt, 1e-3 * std::sqrt(length / params.gravity)));
+      restart = false;
+    }
+    const auto [t0, t1] = integrator->step();
+    const double end = std::min(t1, max_time);
+    // The dense output at evenly spaced instants: the swept arc bounds which vertices can cause an event, and
+    // the first instant at which one holds brackets it.
+    std::array<Quat, kEventSamples + 1> at;
+    std::array<double, kEventSamples + 1> times;
+    double arc = 0;
+    for (int i = 0; i <= kEventSamples; ++i) {
+      times[i] = i == kEventSamples ? end : t0 + (end - t0) * i / kEventSamples;
+      at[i] = i == 0 ? rot.q : integrator->orientation_at(times[i]);
+      if (i > 0) arc += 2 * std::acos(std::min(1.0, std::abs(at[i - 1].dot(at[i]))));
+    }
+    std::vector<double>& zz = next_z;
+    zz.resize(z.size());
+    heights(at[kEventSamples], zz);
+    // The chord sum under-estimates the arc by O(h²) of it: a factor 2 covers that with room.
+    const double swept = 2 * arc * reach_radius;
+    const double level = smooth ? 0.0 : band + touch_tol;
+    std::vector<int>& candidates = event_candidates;
+    candidates.clear();
+    for (std::size_t k = 0; k < zz.size(); ++k)
+      if (std::min(z[k], zz[k]) <= level + swept + event_tol) candidates.push_back(static_cast<int>(k));
+
+    band_entered = false;
+    bool pierced = false;
+    int first = -1;
+    for (int i = 1; i <= kEventSamples && first < 0; ++i)
+      if (adaptive_event_at(at[i], candidates, pierced)) first = i;
+    double taken = end;
+    if (first > 0) {
+      // Bisect the bracketing interval on the dense output (to 2^-48 of it).
+      double lo = times[first - 1], hi = times[first];
+      bool hi_pierced = pierced;
+      for (int i = 0; i < kBisections; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        if (adaptive_event_at(integrator->orientation_at(mid), candidates, pierced)) {
+          hi = mid;
+          hi_pierced = pierced;
+        } else {
+          lo = mid;
+        }
+      }
+      // As in the fixed step: just after a band event, just before a vertex reaches the wall.
+      band_entered = !hi_pierced;
+      taken = hi_pierced ? lo : hi;
+      restart = true;
+    } else if (end < t1) {
+      restart = true;
+    }
+    const sim::Rotation next = integrator->state_at(taken);
+    stalled_steps = taken - t < 1e-9 * dt ? stalled_steps + 1 : 0;
+    rot = next;
+    q = rot.q;
+    com = sim::com_position(support, q);
+    t = taken;
+    ++steps;
+    const bool heights_known = first < 0 && end == t1;
+    if (heights_known) z.swap(next_z);
+    update_contacts(rot.omega, rot.omega.cross(com - support.world), heights_known);
+  }
+
+  // The adaptive integrator's events: those of the fixed step, and a contact leaving the ε band (Algorithm 1's
+  // contact set shrinks: a line or surface contact may become a point).
+  bool adaptive_event_at(const Quat& qq, const std::vector<int>& candidates, bool& pierced) const {
+    const Vec3 r3 = qq.toRotationMatrix().row(2).transpose();
+    bool event = false;
+    pierced = false;
+    for (int k : candidates) {
+      const double zk = support.world.z() + r3.dot(particle.hull.vertices[k] - support.body);
+      pierced = pierced || pierces(k, zk);
+      event = event || pierced || enters_band(k, zk) || leaves_band(k, zk);
+    }
+    return event;
+  }
+  bool leaves_band(std::size_t k, double zk) const {
+    return !smooth && !finishing && in_contact[k] && zk > band + touch_tol;
   }
 
   // ---- contacts, stability and supports
@@ -428,6 +531,7 @@ struct Settler::Impl {
     reach_radius = hull_radius + support.body.norm();
     com = sim::com_position(support, q);
     rot = {q, Vec3::Zero(), Vec3::Zero()};
+    restart = true;
     heights(q, z);
     max_penetration = std::max(max_penetration, -*std::min_element(z.begin(), z.end()));
     remember_axis(rot.omega);
@@ -534,6 +638,7 @@ struct Settler::Impl {
     rot.q = q;
     rot.momentum = momentum;
     rot.omega = sim::omega_from_momentum(body, support, q, momentum);
+    restart = true;
     remember_axis(rot.omega);
   }
 

@@ -90,6 +90,8 @@ struct Case {
   long max_steps = 0;           ///< 0: the default SettleParams::max_steps
   double damping = -1;          ///< if ≥ 0, the damping coefficient itself (overrides damping_fraction)
   double drop_height = -1;      ///< if ≥ 0, the drop height itself (overrides drop_fraction)
+  Integrator integrator = Integrator::paper;
+  double tolerance = SettleParams{}.tolerance;  ///< the adaptive integrator's
 };
 
 /// Step budget of a possibly-smooth ellipsoid in the budgeted sweep (~6 s of CPU at its worst).
@@ -187,6 +189,8 @@ inline SettleParams params_for(const Case& c, const Particle& p) {
   SettleParams prm;
   prm.gravity = kG;
   prm.smooth = c.smooth;
+  prm.integrator = c.integrator;
+  prm.tolerance = c.tolerance;
   prm.drop_height = c.drop_height >= 0 ? c.drop_height : c.drop_fraction * p.length;
   prm.damping = c.damping >= 0
                     ? c.damping
@@ -204,6 +208,8 @@ inline std::string repro(const Case& c, const Particle& p) {
   if (prm.damping > 0) s += " --damping " + num17(prm.damping);
   if (c.smooth != SmoothMode::automatic) s += std::string(" --smooth ") + name(c.smooth);
   if (c.max_steps > 0) s += " --max-steps " + std::to_string(c.max_steps);
+  if (c.integrator == Integrator::adaptive) s += " --integrator adaptive";
+  if (c.tolerance != SettleParams{}.tolerance) s += " --tolerance " + num17(c.tolerance);
   return s + "   # case " + std::to_string(c.index);
 }
 
@@ -286,7 +292,7 @@ inline Outcome run_case(const Case& c, const Particle& p) {
   bool finite = true, first = true, stalled = false;
   double e_prev = 0, e_start = 0, lowest = INFINITY;
   Quat q_prev = c.orientation;
-  double omega_prev = 0;
+  double omega_prev = 0, t_prev = 0;
   auto observe = [&](const Sample& s) {
     ++o.samples;
     const bool ok = std::isfinite(s.t) && s.orientation.coeffs().allFinite() && s.omega.allFinite() &&
@@ -307,6 +313,7 @@ inline Outcome run_case(const Case& c, const Particle& p) {
     if (s.omega.squaredNorm() > 0) {  // moving: the rest pose is snapped from the last such sample
       q_prev = s.orientation;
       omega_prev = s.omega.norm();
+      t_prev = s.t;
     }
     // Independent penetration check: the lowest hull vertex at this sample.
     const Vec3 r3 = s.orientation.normalized().toRotationMatrix().row(2).transpose();
@@ -382,10 +389,15 @@ inline Outcome run_case(const Case& c, const Particle& p) {
         fail("supporting point at z = " + num17(cp.z() / L) + " L, not within 1e-12 L of the wall");
         break;
       }
-    // The rest pose is where the motion took the particle: from the last moving sample, one step (at most
-    // about |ω|·dt) and the flush alignment of a face whose points all touch within 1e-9·L; smooth
-    // particles too (they rest only by landing on three points of their bottom facet).
-    const double reach = 1.5 * omega_prev * r.dt + 1e-6;
+    // The rest pose is where the motion took the particle: from the last moving sample, one step of Δt turns
+    // the body by at most |ω|·Δt + ½·α·Δt², with α ≤ m·g·L / I_min (the weight's moment about any support is
+    // at most m·g·L, and the inertia about any point is at least the smallest principal moment about the
+    // centre of mass), then the flush alignment of a face whose points all touch within 1e-9·L; smooth
+    // particles too (they rest only by landing on three points of their bottom facet). The factor 1.5 leaves
+    // room for the gyroscopic term, which the bound leaves out.
+    const double step = r.time - t_prev;
+    const double alpha = p.mass.mass * kG * L / p.mass.principal_moments.minCoeff();
+    const double reach = 1.5 * (omega_prev * step + 0.5 * alpha * step * step) + 1e-6;
     if (o.rest_snap > reach)
       fail("rest pose is a " + num17(o.rest_snap) +
            " rad rotation from the last moving state (one step turns ≤ " + num17(reach) +

@@ -15,7 +15,7 @@
 // 30-60 s on 2 threads in the Release build; the sanitizer build runs a reduced sweep of cheap shapes.
 // Environment (for larger local sweeps): REPOSE_PROPERTY_DROPS (default 10000 in optimised builds, 8 in
 // debug/sanitizer builds), REPOSE_PROPERTY_FIRST (first case index, default 0), REPOSE_PROPERTY_SEED (master
-// seed), REPOSE_PROPERTY_THREADS (default 2), REPOSE_PROPERTY_FULL (1: the full case mix, see make_case),
+// seed), REPOSE_PROPERTY_THREADS (default 2), REPOSE_PROPERTY_TOLERANCE (the adaptive integrator's tolerance), REPOSE_PROPERTY_FULL (1: the full case mix, see make_case),
 // REPOSE_PROPERTY_LOG (a CSV file, one line per run). The summary is printed with std::cout (ctest -V shows
 // it).
 #include <gtest/gtest.h>
@@ -71,10 +71,15 @@ struct Sweep {
 };
 
 // Runs cases [first, first + count) of the given master seed.
-Sweep run_sweep(std::uint64_t seed, int first, int count, int threads, bool full) {
+Sweep run_sweep(std::uint64_t seed, int first, int count, int threads, bool full, Integrator integrator,
+                double tolerance) {
   const bool coarse = kCoarse && !full;
   Sweep s;
-  for (int i = 0; i < count; ++i) s.cases.push_back(property::make_case(seed, first + i, full, coarse));
+  for (int i = 0; i < count; ++i) {
+    s.cases.push_back(property::make_case(seed, first + i, full, coarse));
+    s.cases.back().integrator = integrator;
+    s.cases.back().tolerance = tolerance;
+  }
   for (const Case& c : s.cases)  // built up front: Particles are shared read-only by the threads
     if (!s.particles.count(c.spec))
       s.particles.emplace(c.spec, std::make_unique<Particle>(load_particle(c.spec, property::kDensity)));
@@ -187,13 +192,15 @@ int report_failures(const Sweep& s, std::ostream& out, std::size_t limit) {
   return failed;
 }
 
-void sweep_and_check(long default_drops, bool default_full) {
+void sweep_and_check(long default_drops, bool default_full, Integrator integrator) {
   const bool full = env_long("REPOSE_PROPERTY_FULL", default_full ? 1 : 0) != 0;
   const auto seed = static_cast<std::uint64_t>(env_long("REPOSE_PROPERTY_SEED", kDefaultSeed));
   const int first = static_cast<int>(env_long("REPOSE_PROPERTY_FIRST", 0));
   const int count = static_cast<int>(env_long("REPOSE_PROPERTY_DROPS", default_drops));
   const int threads = static_cast<int>(std::max(1L, env_long("REPOSE_PROPERTY_THREADS", 2)));
-  const Sweep s = run_sweep(seed, first, count, threads, full);
+  const char* tol_text = std::getenv("REPOSE_PROPERTY_TOLERANCE");
+  const double tolerance = tol_text != nullptr && *tol_text != '\0' ? std::atof(tol_text) : SettleParams{}.tolerance;
+  const Sweep s = run_sweep(seed, first, count, threads, full, integrator, tolerance);
   print_summary(s, std::cout);
   if (const char* log = std::getenv("REPOSE_PROPERTY_LOG"); log != nullptr && *log != '\0') {
     // One line per run, for offline analysis of big sweeps.
@@ -221,7 +228,10 @@ void sweep_and_check(long default_drops, bool default_full) {
   EXPECT_EQ(failed, 0) << failed << " of " << count << " drops broke a property:\n" << failures.str();
 }
 
-TEST(Property, RandomDropsKeepEveryInvariant) { sweep_and_check(kDefaultDrops, false); }
+TEST(Property, RandomDropsKeepEveryInvariant) { sweep_and_check(kDefaultDrops, false, Integrator::paper); }
+TEST(Property, RandomDropsKeepEveryInvariantWithTheAdaptiveIntegrator) {
+  sweep_and_check(kDefaultDrops, false, Integrator::adaptive);
+}
 
 // The big local sweep: REPOSE_PROPERTY_DROPS=20000 REPOSE_PROPERTY_THREADS=2 repose_tests
 // --gtest_filter='Property.RandomDropsKeepEveryInvariant'. REPOSE_PROPERTY_FULL=1 switches to the full case

@@ -21,10 +21,21 @@ enum class SmoothMode {
   off,        ///< point / line / surface contacts with the stability tests
 };
 
+/// How a rotation phase is integrated between contact events.
+enum class Integrator {
+  paper,     ///< the paper's fixed step: trapezoidal rule solved by pseudo-time iteration (Eqs 10-16)
+  adaptive,  ///< Dormand–Prince 5(4) with error control and dense output; events located on the dense output
+};
+
 struct SettleParams {
   double gravity = 9.81;            ///< magnitude of g, length/time², along −z
   double damping = 0.0;             ///< C in Eq 4, torque per angular velocity (mass·length²/time)
-  double dt = 0.0;                  ///< time step (time); 0 = automatic: 1e-3·sqrt(L/g)
+  Integrator integrator = Integrator::paper;
+  /// paper: the time step; adaptive: the longest step (time); 0 = automatic: 1e-3·sqrt(L/g) for paper,
+  /// 0.05·sqrt(L/g) for adaptive.
+  double dt = 0.0;
+  /// adaptive: local error bound per step on the state scaled by L and sqrt(L/g) (absolute and relative).
+  double tolerance = 1e-11;
   double contact_threshold = 0.05;  ///< ε as a fraction of L: points within ε·L of the wall are contacts
   /// Line vs surface (Algorithm 1): the contact set is a line when the residual sum of squares of its
   /// best-fit line is below this fraction of L². The paper's 0.1 (cm², for a particle of L ≈ 1 cm) is 0.1·L².
