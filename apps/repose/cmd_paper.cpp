@@ -35,8 +35,9 @@ void run_case(const PaperCase& c, const PaperOptions& o) {
   ensure_output_directory(dir);
   const Particle particle = load_particle(s.particle, s.density);
   std::vector<Sample> samples;
-  const SettleResult r =
-      settle(particle, s.params, s.orientation, [&](const Sample& x) { samples.push_back(x); });
+  const SettleResult r = settle(
+      particle, s.params, s.orientation, [&](const Sample& x) { samples.push_back(x); },
+      default_sample_dt(particle, s.params));
 
   std::string csv = time_series_header();
   for (const Sample& x : samples) csv += time_series_row(x);

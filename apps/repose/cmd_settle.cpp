@@ -27,6 +27,7 @@ struct SettleOptions {
   std::string out_dir;
   std::string vtk_dir;
   double frame_dt = 0;
+  double sample_dt = 0;
   int frames = 0;
   bool json = false;
 };
@@ -126,6 +127,11 @@ Command add_settle_command(CLI::App& app) {
   add_physics_options(*sub, o->physics, "Damping coefficient C of Eq 4 (mass*length^2/time; default 0)");
   sub->add_option("--out", o->out_dir, "Write timeseries.csv and summary.json into this directory");
   sub->add_option("--vtk", o->vtk_dir, "Write ParaView frames (.vtp) and settling.pvd into this directory");
+  sub->add_option(
+         "--sample-dt", o->sample_dt,
+         "Time between the samples of timeseries.csv and the ParaView frames' candidates (0 or unset: "
+         "every step with --integrator paper, 1e-3*sqrt(L/g) with adaptive)")
+      ->check(CLI::NonNegativeNumber);
   sub->add_option("--frame-dt", o->frame_dt, "Time between ParaView frames (default: every step)")
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--frames", o->frames, "At most this many ParaView frames, evenly spread over the run")
@@ -140,9 +146,16 @@ Command add_settle_command(CLI::App& app) {
             // Samples are kept when frames must be spread over a run whose length is known only at its end.
             const bool keep_samples = !o->out_dir.empty() || !o->vtk_dir.empty();
             std::vector<Sample> samples;
-            const SettleResult r = settle(particle, setup.params, setup.orientation, [&](const Sample& s) {
-              if (keep_samples) samples.push_back(s);
-            });
+            // Without outputs no sample is kept, and the adaptive run is the same whatever the interval.
+            const double sample_dt = !keep_samples      ? 0.0
+                                     : o->sample_dt > 0 ? o->sample_dt
+                                                        : default_sample_dt(particle, setup.params);
+            const SettleResult r = settle(
+                particle, setup.params, setup.orientation,
+                [&](const Sample& s) {
+                  if (keep_samples) samples.push_back(s);
+                },
+                sample_dt);
             std::string csv = time_series_header();
             for (const Sample& s : samples) csv += time_series_row(s);
             if (!o->vtk_dir.empty()) {

@@ -12,11 +12,11 @@ struct PhysicsOptions {
   double density = 1.0;
   std::string units = "si";
   std::string smooth = "auto";
-  std::string integrator = "paper";
+  std::string integrator;  ///< empty: the library's default
   SettleParams params;
 
   Integrator integrator_kind() const {
-    return integrator == "adaptive" ? Integrator::adaptive : Integrator::paper;
+    return integrator.empty() ? SettleParams{}.integrator : parse_integrator(integrator);
   }
 
   UnitSystem unit_system() const { return units == "cgs" ? UnitSystem::cgs : UnitSystem::si; }
@@ -25,7 +25,8 @@ struct PhysicsOptions {
   }
 };
 
-/// Registers --density, --units, --damping (with `damping_help`), --integrator, --dt, --tolerance, --contact-threshold,
+/// Registers --density, --units, --damping (with `damping_help`), --integrator, --dt, --tolerance,
+/// --contact-threshold,
 /// --line-threshold, --smooth, --drop-height, --drop-speed, --max-time and --max-steps on `sub`.
 inline void add_physics_options(CLI::App& sub, PhysicsOptions& o, const std::string& damping_help) {
   sub.add_option("--density", o.density, "Density (kg/m^3 in si, g/cm^3 in cgs; default 1)");
@@ -33,8 +34,9 @@ inline void add_physics_options(CLI::App& sub, PhysicsOptions& o, const std::str
       ->check(CLI::IsMember({"si", "cgs"}));
   sub.add_option("--damping", o.params.damping, damping_help);
   sub.add_option("--integrator", o.integrator,
-                 "Rotation phases: paper (the paper's fixed step, default) or adaptive (Dormand-Prince 5(4) "
-                 "with events located on its dense output)")
+                 "Rotation phases: adaptive (Dormand-Prince 5(4) with events located on its dense output) or "
+                 "paper (the paper's fixed step with its pseudo-time iteration); default " +
+                     std::string(to_string(SettleParams{}.integrator)))
       ->check(CLI::IsMember({"paper", "adaptive"}));
   sub.add_option("--dt", o.params.dt,
                  "paper: the time step; adaptive: the longest step (0 or unset: automatic, 1e-3*sqrt(L/g) "

@@ -19,6 +19,16 @@ void require(bool ok, const char* name, double value, const char* what) {
 }
 }  // namespace
 
+const char* to_string(Integrator integrator) {
+  return integrator == Integrator::adaptive ? "adaptive" : "paper";
+}
+
+Integrator parse_integrator(const std::string& name) {
+  if (name == "adaptive") return Integrator::adaptive;
+  if (name == "paper") return Integrator::paper;
+  throw Error("unknown integrator '" + name + "' (expected paper or adaptive)");
+}
+
 void validate(const SettleParams& p) {
   require(std::isfinite(p.gravity) && p.gravity > 0, "gravity", p.gravity, "a finite positive number");
   require(std::isfinite(p.damping) && p.damping >= 0, "damping", p.damping, "a finite number >= 0");

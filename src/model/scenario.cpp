@@ -41,9 +41,9 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
   }
   if (!j.is_object()) throw Error(origin + ": a scenario must be a JSON object");
   static const std::set<std::string> known = {
-      "name",           "description", "note",       "particle", "density",
-      "units",          "orientation", "damping",    "dt",       "contact_threshold",
-      "line_threshold", "drop_height", "drop_speed", "max_time", "smooth"};
+      "name",        "description", "note",   "particle",          "density",        "units",
+      "orientation", "damping",     "dt",     "contact_threshold", "line_threshold", "drop_height",
+      "drop_speed",  "max_time",    "smooth", "integrator",        "tolerance"};
   for (const auto& [key, value] : j.items())
     if (!known.count(key)) throw Error(origin + ": unknown field '" + key + "'");
   if (!j.contains("particle")) throw Error(origin + ": missing field 'particle'");
@@ -71,6 +71,12 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
   p.gravity = standard_gravity(s.units);
   p.damping = number(j, "damping", p.damping, origin);
   p.dt = number(j, "dt", p.dt, origin);
+  p.tolerance = number(j, "tolerance", p.tolerance, origin);
+  try {
+    p.integrator = parse_integrator(text(j, "integrator", to_string(p.integrator), origin));
+  } catch (const Error& e) {
+    throw Error(origin + ": " + e.what());
+  }
   p.contact_threshold = number(j, "contact_threshold", p.contact_threshold, origin);
   p.line_threshold = number(j, "line_threshold", p.line_threshold, origin);
   p.drop_height = number(j, "drop_height", p.drop_height, origin);

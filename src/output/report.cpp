@@ -23,7 +23,9 @@ std::string settle_summary_json(const Particle& particle, const SettleParams& pa
                    {"smooth", r.smooth}};
   j["parameters"] = {{"gravity", params.gravity},
                      {"damping", params.damping},
+                     {"integrator", to_string(params.integrator)},
                      {"dt", r.dt},
+                     {"tolerance", params.tolerance},
                      {"contact_threshold", params.contact_threshold},
                      {"line_threshold", params.line_threshold},
                      {"drop_height", params.drop_height},

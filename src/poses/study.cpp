@@ -37,7 +37,9 @@ json settings_json(const PosesStudy& s) {
   const SettleParams& p = s.params;
   return {{"gravity", p.gravity},
           {"damping", p.damping},
+          {"integrator", to_string(p.integrator)},
           {"dt", p.dt},
+          {"tolerance", p.tolerance},
           {"contact_threshold", p.contact_threshold},
           {"line_threshold", p.line_threshold},
           {"smooth_mode", smooth_mode_name(p.smooth)},
@@ -191,6 +193,9 @@ PosesStudy parse_poses_json(const std::string& text, const std::string& name) {
     p.gravity = set.at("gravity").get<double>();
     p.damping = set.at("damping").get<double>();
     p.dt = set.at("dt").get<double>();
+    // Files written before the adaptive integrator existed were computed with the paper's.
+    p.integrator = parse_integrator(set.value("integrator", std::string("paper")));
+    p.tolerance = set.value("tolerance", p.tolerance);
     p.contact_threshold = set.at("contact_threshold").get<double>();
     p.line_threshold = set.at("line_threshold").get<double>();
     p.smooth = parse_smooth_mode(set.at("smooth_mode").get<std::string>());

@@ -21,8 +21,8 @@
 #include "contact.hpp"
 #include "dynamics.hpp"
 #include "impact_support.hpp"
-#include "rotation_integrator.hpp"
 #include "repose/error.hpp"
+#include "rotation_integrator.hpp"
 #include "stability.hpp"
 
 namespace repose {
@@ -69,6 +69,11 @@ const char* to_string(RestKind kind) {
   return "?";
 }
 
+double default_sample_dt(const Particle& particle, const SettleParams& params) {
+  if (params.integrator == Integrator::paper) return 0;
+  return 1e-3 * std::sqrt(particle.length / params.gravity);
+}
+
 bool is_smooth_surface(const Particle& particle) {
   return particle.convex_surface && particle.max_dihedral_angle < std::numbers::pi / 6;
 }
@@ -81,8 +86,8 @@ constexpr int kStallLimit = 20;  // after this many near-empty steps, contact ch
 // falls from there. Ten times the touching tolerance, so round-off never puts it back on the balance; the
 // fall from an offset δ takes about ln(d/δ)/λ (d: centre of mass to edge, λ: the inverted pendulum's rate).
 constexpr double kBalanceOffset = 1e-8;
-// The adaptive integrator's automatic longest step (× sqrt(L/g)): contact decisions (line support, the paper's
-// stability test, the balance check) are re-evaluated at the end of every step.
+// The adaptive integrator's automatic longest step (× sqrt(L/g)): contact decisions (line support, the
+// paper's stability test, the balance check) are re-evaluated at the end of every step.
 constexpr double kAdaptiveMaxStep = 0.05;
 // The adaptive step is searched for events at this many evenly spaced instants of its dense output, so a
 // vertex that dips below the wall and back up inside one step is still caught.
@@ -101,24 +106,30 @@ struct Settler::Impl {
   double dt = 0;
   double max_time = 0;
   bool smooth = false;
-  bool adaptive = false;    // Integrator::adaptive
+  bool adaptive = false;  // Integrator::adaptive
   std::optional<sim::RotationIntegrator> integrator;
   double hull_radius = 0;   // largest distance of a hull vertex from the centre of mass
   double reach_radius = 0;  // largest distance of a hull vertex from the current support
 
   // Per-run state.
   double t = 0;
+  double limit = INFINITY;  // advance_to(): no step goes past this time
   long steps = 0;
   Status status = Status::running;
   bool falling = false;
   double fall_speed = 0;          // downward
+  double touch_time = 0;          // when the falling particle reaches the wall
+  long fall_steps = 0;            // grid steps of the fall taken (it steps to multiples of dt)
   double lowest_body_height = 0;  // min over hull vertices of (R p).z, constant while falling
   Quat q = Quat::Identity();
   Vec3 com = Vec3::Zero();
   sim::Support support;
   sim::Rotation rot;
   int support_vertex = -1;
-  bool restart = true;  // adaptive: the support or the motion changed, so the integrator starts afresh
+  bool restart = true;   // adaptive: the support or the motion changed, so the integrator starts afresh
+  bool in_step = false;  // adaptive: inside an integrator step (stopped in it by advance_to())
+  double step_start = 0, step_end = 0;  // adaptive: the current step: its start, its first event or end
+  bool step_event = false, step_band_entered = false;
   bool finishing = false;
   bool trace = std::getenv("REPOSE_TRACE") != nullptr;  // debugging aid: one line per step on stderr
   bool band_entered = true;  // a point entered the ε band in the last step (or contact just began)
@@ -182,6 +193,9 @@ struct Settler::Impl {
     if (params.drop_height > 0) {
       falling = true;
       fall_speed = params.drop_speed;
+      touch_time =
+          (-fall_speed + std::sqrt(fall_speed * fall_speed + 2 * params.gravity * params.drop_height)) /
+          params.gravity;
       phases.push_back({ContactType::free_fall, 0, 0});
     } else {
       begin_contact(Vec3(0, 0, -params.drop_speed));
@@ -209,21 +223,27 @@ struct Settler::Impl {
   // ---- free fall
   // -------------------------------------------------------------------------------------------
 
+  // The fall is exact: the closed form from its start, z(t) = z0 − v0·t − ½·g·t², to the touch time
+  // (−v0 + sqrt(v0² + 2·g·h))/g. Steps end on the grid of multiples of dt (observers see the fall there); a
+  // stop at the time limit or at advance_to() is not a step, so where a run is stopped never changes it.
   void fall_step() {
-    const double h = com.z() + lowest_body_height;  // height of the lowest point
-    const double g = params.gravity;
-    const double touch = (-fall_speed + std::sqrt(fall_speed * fall_speed + 2 * g * std::max(h, 0.0))) / g;
-    const double step = std::min({dt, touch, max_time - t});
-    t += step;
-    ++steps;
-    if (step == touch) {
+    const double g = params.gravity, v0 = params.drop_speed;
+    const double grid = static_cast<double>(fall_steps + 1) * dt;
+    const double end = std::min({grid, touch_time, max_time, limit});
+    t = end;
+    if (end == touch_time) {
+      ++steps;
       com.z() = -lowest_body_height;  // exactly touching
-      fall_speed += g * step;
+      fall_speed = v0 + g * touch_time;
       begin_contact(Vec3(0, 0, -fall_speed));
-    } else {
-      com.z() -= fall_speed * step + 0.5 * g * step * step;
-      fall_speed += g * step;
+      return;
     }
+    if (end == grid) {
+      ++fall_steps;
+      ++steps;
+    }
+    com.z() = params.drop_height - lowest_body_height - (v0 * t + 0.5 * g * t * t);
+    fall_speed = v0 + g * t;
   }
 
   // First touch (or the start of a run at drop height 0): translation stops and the particle pivots about its
@@ -277,7 +297,7 @@ struct Settler::Impl {
     }
     sim::Rotation next;
     // The last step is shortened so a run never passes its time limit.
-    const double h = std::min(dt, max_time - t);
+    const double h = std::min({dt, max_time - t, limit - t});
     int iterations =
         sim::rotate_step(body, support, rot, h, params.quaternion_tolerance, params.max_iterations, next);
     double taken = h;
@@ -341,21 +361,50 @@ struct Settler::Impl {
     update_contacts(omega_before, omega_before.cross(com - support.world), /*heights_known=*/!event);
   }
 
-  // One adaptive step (or the part of it before the first event), then the contact update at its end.
+  // One adaptive step, or the part of it before its first event, then the contact update at its end. The
+  // step and its first event are found once, over the whole step, so advance_to() can stop inside it (the
+  // state there is only interpolated, with no contact decision) without changing the run.
   void rotate_adaptive() {
     if (restart) {
       integrator->start(support, rot, t, std::min(dt, 1e-3 * std::sqrt(length / params.gravity)));
       restart = false;
+      in_step = false;
     }
-    const auto [t0, t1] = integrator->step();
-    const double end = std::min(t1, max_time);
+    if (!in_step) begin_adaptive_step();
+    const double end = std::min({step_end, max_time, limit});
+    if (end < step_end) {  // stopped inside the step by advance_to() or the time limit
+      rot = integrator->state_at(end);
+      q = rot.q;
+      com = sim::com_position(support, q);
+      t = end;
+      return;
+    }
+    in_step = false;
+    band_entered = step_band_entered;
+    if (step_event) restart = true;
+    rot = integrator->state_at(step_end);
+    stalled_steps = step_end - step_start < 1e-9 * dt ? stalled_steps + 1 : 0;
+    q = rot.q;
+    com = sim::com_position(support, q);
+    t = step_end;
+    ++steps;
+    if (!step_event) z.swap(next_z);
+    update_contacts(rot.omega, rot.omega.cross(com - support.world), /*heights_known=*/!step_event);
+  }
+
+  // Takes one integrator step from t and finds its first event (step_end: the event, or the step's end).
+  void begin_adaptive_step() {
+    integrator->step();
+    in_step = true;
+    step_start = t;
+    const double t0 = t, t1 = integrator->time();
     // The dense output at evenly spaced instants: the swept arc bounds which vertices can cause an event, and
     // the first instant at which one holds brackets it.
     std::array<Quat, kEventSamples + 1> at;
     std::array<double, kEventSamples + 1> times;
     double arc = 0;
     for (int i = 0; i <= kEventSamples; ++i) {
-      times[i] = i == kEventSamples ? end : t0 + (end - t0) * i / kEventSamples;
+      times[i] = i == kEventSamples ? t1 : t0 + (t1 - t0) * i / kEventSamples;
       at[i] = i == 0 ? rot.q : integrator->orientation_at(times[i]);
       if (i > 0) arc += 2 * std::acos(std::min(1.0, std::abs(at[i - 1].dot(at[i]))));
     }
@@ -370,46 +419,33 @@ struct Settler::Impl {
     for (std::size_t k = 0; k < zz.size(); ++k)
       if (std::min(z[k], zz[k]) <= level + swept + event_tol) candidates.push_back(static_cast<int>(k));
 
-    band_entered = false;
     bool pierced = false;
     int first = -1;
     for (int i = 1; i <= kEventSamples && first < 0; ++i)
       if (adaptive_event_at(at[i], candidates, pierced)) first = i;
-    double taken = end;
-    if (first > 0) {
-      // Bisect the bracketing interval on the dense output (to 2^-48 of it).
-      double lo = times[first - 1], hi = times[first];
-      bool hi_pierced = pierced;
-      for (int i = 0; i < kBisections; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        if (adaptive_event_at(integrator->orientation_at(mid), candidates, pierced)) {
-          hi = mid;
-          hi_pierced = pierced;
-        } else {
-          lo = mid;
-        }
+    step_end = t1;
+    step_event = first > 0;
+    step_band_entered = false;
+    if (!step_event) return;
+    // Bisect the bracketing interval on the dense output (to 2^-48 of it).
+    double lo = times[first - 1], hi = times[first];
+    bool hi_pierced = pierced;
+    for (int i = 0; i < kBisections; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      if (adaptive_event_at(integrator->orientation_at(mid), candidates, pierced)) {
+        hi = mid;
+        hi_pierced = pierced;
+      } else {
+        lo = mid;
       }
-      // As in the fixed step: just after a band event, just before a vertex reaches the wall.
-      band_entered = !hi_pierced;
-      taken = hi_pierced ? lo : hi;
-      restart = true;
-    } else if (end < t1) {
-      restart = true;
     }
-    const sim::Rotation next = integrator->state_at(taken);
-    stalled_steps = taken - t < 1e-9 * dt ? stalled_steps + 1 : 0;
-    rot = next;
-    q = rot.q;
-    com = sim::com_position(support, q);
-    t = taken;
-    ++steps;
-    const bool heights_known = first < 0 && end == t1;
-    if (heights_known) z.swap(next_z);
-    update_contacts(rot.omega, rot.omega.cross(com - support.world), heights_known);
+    // As in the fixed step: just after a band event, just before a vertex reaches the wall.
+    step_band_entered = !hi_pierced;
+    step_end = hi_pierced ? lo : hi;
   }
 
-  // The adaptive integrator's events: those of the fixed step, and a contact leaving the ε band (Algorithm 1's
-  // contact set shrinks: a line or surface contact may become a point).
+  // The adaptive integrator's events: those of the fixed step, and a contact leaving the ε band (Algorithm
+  // 1's contact set shrinks: a line or surface contact may become a point).
   bool adaptive_event_at(const Quat& qq, const std::vector<int>& candidates, bool& pierced) const {
     const Vec3 r3 = qq.toRotationMatrix().row(2).transpose();
     bool event = false;
@@ -745,6 +781,13 @@ struct Settler::Impl {
     return true;
   }
 
+  bool advance_to(double time) {
+    limit = time;
+    while (status == Status::running && t < time) step();
+    limit = INFINITY;
+    return status == Status::running;
+  }
+
   bool step() {
     if (status != Status::running) return false;
     if (t >= max_time) {
@@ -802,24 +845,35 @@ Settler::Settler(Settler&&) noexcept = default;
 Settler& Settler::operator=(Settler&&) noexcept = default;
 
 bool Settler::step() { return impl_->step(); }
+bool Settler::advance_to(double time) { return impl_->advance_to(time); }
 Sample Settler::sample() const { return impl_->sample(); }
 Status Settler::status() const { return impl_->status; }
 SettleResult Settler::result() const { return impl_->result(); }
 
-SettleResult Settler::run(const std::function<void(const Sample&)>& observer) {
+SettleResult Settler::run(const std::function<void(const Sample&)>& observer, double sample_dt) {
+  if (!(std::isfinite(sample_dt) && sample_dt >= 0))
+    throw Error("sample interval must be a finite number >= 0, got " + std::to_string(sample_dt));
   if (observer) observer(sample());
+  if (sample_dt > 0) {
+    for (long k = 1; impl_->status == Status::running; ++k) {
+      advance_to(static_cast<double>(k) * sample_dt);
+      if (observer) observer(sample());
+    }
+    return result();
+  }
   while (impl_->status == Status::running) {
     const long steps_before = impl_->steps;
+    const double t_before = impl_->t;
     step();
-    if (observer && impl_->steps != steps_before) observer(sample());
+    if (observer && (impl_->steps != steps_before || impl_->t != t_before)) observer(sample());
   }
   return result();
 }
 
 SettleResult settle(const Particle& particle, const SettleParams& params, const Quat& orientation,
-                    const std::function<void(const Sample&)>& observer) {
+                    const std::function<void(const Sample&)>& observer, double sample_dt) {
   Settler settler(particle, params, orientation);
-  return settler.run(observer);
+  return settler.run(observer, sample_dt);
 }
 
 }  // namespace repose

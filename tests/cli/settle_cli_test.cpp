@@ -225,8 +225,14 @@ TEST_F(SettleCli, OutWritesTimeSeriesAndSummary) {
     }
     rows.push_back(row);
   }
-  // The observer sees the initial state and every step.
-  ASSERT_EQ(rows.size(), j["steps"].get<size_t>() + 1);
+  // With the default (adaptive) integrator the series holds the initial state, every multiple of the
+  // automatic interval 1e-3·sqrt(L/g) before the rest, and the rest: 1 + ceil(T/Δ) rows.
+  const double length = std::cbrt(6 / (6 * std::numbers::sqrt2) / std::numbers::pi);  // L, edge 1
+  const double interval = 1e-3 * std::sqrt(length / 981.0);
+  const double rest_time = j["time"].get<double>();
+  ASSERT_EQ(rows.size(), static_cast<size_t>(std::ceil(rest_time / interval)) + 1);
+  for (size_t i = 1; i + 1 < rows.size(); ++i)  // the file has 9 significant digits
+    ASSERT_NEAR(rows[i][0], i * interval, 1e-8 * i * interval) << "row " << i;
   for (size_t i = 1; i < rows.size(); ++i) ASSERT_LE(rows[i - 1][0], rows[i][0]) << "row " << i;
   EXPECT_EQ(rows.front()[0], 0.0);
   const double t = j["time_to_rest"].get<double>();
@@ -234,6 +240,36 @@ TEST_F(SettleCli, OutWritesTimeSeriesAndSummary) {
   const std::vector<double> com = numbers(j["rest"]["com"]);
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(rows.back()[8 + k], com[k], 1e-10) << "com " << k;
   EXPECT_EQ(rows.back()[12], 3.0);  // three contact points at rest
+}
+
+TEST_F(SettleCli, SampleIntervalAndThePaperIntegratorSetTheRows) {
+  // --sample-dt S: rows at 0, S, 2S, ... and the rest; --integrator paper: one row per step (its default),
+  // the same rest as the adaptive run within the trapezoidal rule's error (measured 2e-8 of the time; 1e-6).
+  const fs::path a = dir_ / "a", b = dir_ / "b";
+  const json ja = parse_json(run_cli(kTetra + " --json --sample-dt 0.002 --out " + quote(a.string())));
+  const json jb = parse_json(run_cli(kTetra + " --json --integrator paper --out " + quote(b.string())));
+  auto times = [&](const fs::path& dir) {
+    std::ifstream csv(dir / "timeseries.csv");
+    std::string line;
+    std::getline(csv, line);
+    std::vector<double> t;
+    while (std::getline(csv, line)) t.push_back(std::stod(line.substr(0, line.find(','))));
+    return t;
+  };
+  const std::vector<double> ta = times(a), tb = times(b);
+  const double rest = ja["time"].get<double>();
+  ASSERT_EQ(ta.size(), static_cast<size_t>(std::ceil(rest / 0.002)) + 1);
+  for (size_t i = 0; i + 1 < ta.size(); ++i) EXPECT_NEAR(ta[i], 0.002 * i, 1e-8 * 0.002 * i);  // 9 digits
+  EXPECT_NEAR(ta.back(), rest, 1e-8 * rest);
+  EXPECT_EQ(jb["parameters"]["integrator"], "paper");
+  EXPECT_EQ(ja["parameters"]["integrator"], "adaptive");
+  EXPECT_EQ(tb.size(), jb["steps"].get<size_t>() + 1);
+  EXPECT_EQ(jb["rest"]["face"], ja["rest"]["face"]);
+  EXPECT_NEAR(jb["time"].get<double>(), rest, 1e-6 * rest);
+  // The series does not change the run: the same summary as without --out.
+  const json plain = parse_json(run_cli(kTetra + " --json"));
+  EXPECT_EQ(plain["time"], ja["time"]);
+  EXPECT_EQ(plain["rest"], ja["rest"]);
 }
 
 TEST_F(SettleCli, OutIntoExistingDirectoryKeepsOtherFiles) {

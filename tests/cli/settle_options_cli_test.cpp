@@ -156,8 +156,10 @@ TEST_F(SettleOptionsCli, MaxTimeExitsThreeAtThatTime) {
   EXPECT_EQ(j["rest"]["face"], -1);
   ASSERT_EQ(j["phases"].size(), 1u);
   EXPECT_EQ(j["phases"][0]["contact"], "point");
+  // Rows at every 1e-3·sqrt(L/g) (the adaptive integrator's automatic interval) and at the limit.
   const auto rows = csv_rows(read_file(out / "timeseries.csv"));
-  ASSERT_EQ(rows.size(), j["steps"].get<std::size_t>() + 1);
+  const double interval = 1e-3 * std::sqrt(kTetraLength / 981.0);
+  ASSERT_EQ(rows.size(), static_cast<std::size_t>(std::ceil(0.01 / interval)) + 1);
   EXPECT_NEAR(std::stod(rows.back()[0]), 0.01, 1e-12);  // 12 significant digits in the file
 
   const CliResult text = run_cli(run);
@@ -168,18 +170,25 @@ TEST_F(SettleOptionsCli, MaxTimeExitsThreeAtThatTime) {
 }
 
 TEST_F(SettleOptionsCli, ZeroStepAndTimeLimitMeanAutomatic) {
-  // --dt 0 and --max-time 0 are the documented "automatic" values (--help): dt = 1e-3·sqrt(L/g) and a limit
-  // of 2000·sqrt(L/g) (no fall here): the same run as without them, to the bit.
+  // --dt 0 and --max-time 0 are the documented "automatic" values (--help): the longest step 0.05·sqrt(L/g)
+  // of the adaptive integrator (1e-3·sqrt(L/g) for the paper's step) and a limit of 2000·sqrt(L/g) (no fall
+  // here): the same run as without them, to the bit.
   const std::string tetra =
       "settle tetrahedron:edge=1 --units cgs --orientation axis-angle:1,0.3,0,2.5 --json";
   const json plain = parse_json(run_cli(tetra));
   const json zero = parse_json(run_cli(tetra + " --dt 0 --max-time 0"));
   const double scale = std::sqrt(kTetraLength / 981.0);
-  EXPECT_NEAR(plain["parameters"]["dt"].get<double>(), 1e-3 * scale, 1e-15);
+  EXPECT_NEAR(plain["parameters"]["dt"].get<double>(), 0.05 * scale, 1e-15);
   EXPECT_EQ(zero["parameters"]["dt"], plain["parameters"]["dt"]);
   EXPECT_EQ(zero["time"], plain["time"]);
   EXPECT_EQ(zero["steps"], plain["steps"]);
-  EXPECT_THAT(run_cli("settle --help").out, HasSubstr("0 or unset: automatic, 1e-3*sqrt(L/g)"));
+  const json paper = parse_json(run_cli(tetra + " --integrator paper"));
+  const json paper_zero = parse_json(run_cli(tetra + " --integrator paper --dt 0 --max-time 0"));
+  EXPECT_NEAR(paper["parameters"]["dt"].get<double>(), 1e-3 * scale, 1e-15);
+  EXPECT_EQ(paper_zero["time"], paper["time"]);
+  EXPECT_EQ(paper_zero["steps"], paper["steps"]);
+  EXPECT_THAT(run_cli("settle --help").out,
+              HasSubstr("0 or unset: automatic, 1e-3*sqrt(L/g) for paper, 0.05*sqrt(L/g) for adaptive"));
 }
 
 // ---------------------------------------------------------------------------------------------------------

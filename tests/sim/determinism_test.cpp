@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <tuple>
 
 #include "repose/poses/ensemble.hpp"
 #include "repose/poses/landscape.hpp"
@@ -32,13 +33,14 @@ struct Fnv1a {
   void integer(std::int64_t x) { bytes(&x, sizeof x); }
 };
 
-std::uint64_t batch_hash(std::uint64_t drops_per_shape) {
+std::uint64_t batch_hash(std::uint64_t drops_per_shape, Integrator integrator) {
   Fnv1a hash;
   const char* specs[] = {"box:x=1,y=2,z=3", "tetrahedron:edge=1", "cylinder:r=0.5,h=0.4,n=32",
                          "ellipsoid:a=0.625,b=0.5,c=0.285,n=6", "irregular:seed=3"};
   for (const char* spec : specs) {
     const Particle particle = load_particle(spec, 1000.0);
     SettleParams params;
+    params.integrator = integrator;
     params.damping = 0.3 * particle.mass.mass * std::sqrt(params.gravity * std::pow(particle.length, 3));
     for (std::uint64_t i = 0; i < drops_per_shape; ++i) {
       params.drop_height = (i % 4) * 0.1 * particle.length;
@@ -55,18 +57,26 @@ std::uint64_t batch_hash(std::uint64_t drops_per_shape) {
 }
 
 // 30 drops per shape in the optimised build; the first 3 per shape in every build, the sanitizer build
-// included (150 drops take minutes there): the same bits from -O1 with sanitizers as from -O2.
-constexpr std::uint64_t kGolden = 0x14e33fbb8cb56d31;
-constexpr std::uint64_t kGoldenFew = 0x4babd233b2c34264;
+// included (150 drops take minutes there): the same bits from -O1 with sanitizers as from -O2. One pair per
+// integrator: the adaptive one (the default) and the paper's fixed step.
+constexpr std::uint64_t kGolden = 0x3bd8166165b6bc5e;
+constexpr std::uint64_t kGoldenFew = 0x8b375f3283dcd405;
+constexpr std::uint64_t kGoldenPaper = 0x9afe063dd0c1cdf5;
+constexpr std::uint64_t kGoldenPaperFew = 0x75cfa27400af8319;
 
 TEST(Determinism, FixedBatchHashesToTheGoldenValue) {
-  const std::uint64_t few = batch_hash(3);
-  EXPECT_EQ(few, kGoldenFew) << "new hash of 3 drops per shape: 0x" << std::hex << few;
-  EXPECT_EQ(batch_hash(3), few) << "two runs in one process differ";
+  for (const auto& [integrator, golden, golden_few] :
+       {std::tuple{Integrator::adaptive, kGolden, kGoldenFew},
+        std::tuple{Integrator::paper, kGoldenPaper, kGoldenPaperFew}}) {
+    const std::uint64_t few = batch_hash(3, integrator);
+    EXPECT_EQ(few, golden_few) << to_string(integrator) << ": new hash of 3 drops per shape: 0x" << std::hex
+                               << few;
+    EXPECT_EQ(batch_hash(3, integrator), few) << to_string(integrator) << ": two runs in one process differ";
 #ifdef NDEBUG
-  const std::uint64_t h = batch_hash(30);
-  EXPECT_EQ(h, kGolden) << "new hash: 0x" << std::hex << h;
+    const std::uint64_t h = batch_hash(30, integrator);
+    EXPECT_EQ(h, golden) << to_string(integrator) << ": new hash: 0x" << std::hex << h;
 #endif
+  }
 }
 
 // The multithreaded batch gives the same tally bits with 1 and 2 threads, also under the sanitizers.

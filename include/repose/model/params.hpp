@@ -28,9 +28,9 @@ enum class Integrator {
 };
 
 struct SettleParams {
-  double gravity = 9.81;            ///< magnitude of g, length/time², along −z
-  double damping = 0.0;             ///< C in Eq 4, torque per angular velocity (mass·length²/time)
-  Integrator integrator = Integrator::paper;
+  double gravity = 9.81;  ///< magnitude of g, length/time², along −z
+  double damping = 0.0;   ///< C in Eq 4, torque per angular velocity (mass·length²/time)
+  Integrator integrator = Integrator::adaptive;
   /// paper: the time step; adaptive: the longest step (time); 0 = automatic: 1e-3·sqrt(L/g) for paper,
   /// 0.05·sqrt(L/g) for adaptive.
   double dt = 0.0;
@@ -48,6 +48,10 @@ struct SettleParams {
   double quaternion_tolerance = 1e-8;  ///< convergence of the pseudo-time iteration (Eqs 12-16)
   int max_iterations = 100;            ///< bound on pseudo-time iterations per step
 };
+
+/// "paper" / "adaptive", and back (throws repose::Error for any other name).
+const char* to_string(Integrator integrator);
+Integrator parse_integrator(const std::string& name);
 
 /// Throws repose::Error naming the offending parameter if any is non-finite or out of range.
 void validate(const SettleParams& params);

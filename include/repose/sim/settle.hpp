@@ -87,8 +87,12 @@ class Settler {
 
   /// Advances one time step (shorter if an event is located inside it). Returns false once the run has ended.
   bool step();
-  /// Runs to the end, calling `observer` (if any) after every step, including the initial state.
-  SettleResult run(const std::function<void(const Sample&)>& observer = {});
+  /// Advances to `time` (a DEM code's own step), taking as many steps and events as it needs; the last step
+  /// is cut to end exactly at `time` unless the run ends first. Returns false once the run has ended.
+  bool advance_to(double time);
+  /// Runs to the end, calling `observer` (if any) with the initial state and then after every step, or, if
+  /// `sample_dt` > 0, at every multiple of `sample_dt` (time) and at the end.
+  SettleResult run(const std::function<void(const Sample&)>& observer = {}, double sample_dt = 0);
 
   Sample sample() const;  ///< the current instant
   Status status() const;
@@ -99,8 +103,13 @@ class Settler {
   std::unique_ptr<Impl> impl_;
 };
 
+/// The time between the samples of a written time series unless the user sets one: 0 (every step) with the
+/// paper's integrator, whose steps are 1e-3·sqrt(L/g) unless set; 1e-3·sqrt(L/g) with the adaptive one,
+/// whose steps are up to 50× longer (smooth curves for plots and ParaView).
+double default_sample_dt(const Particle& particle, const SettleParams& params);
+
 /// Runs one settling simulation to the end.
 SettleResult settle(const Particle& particle, const SettleParams& params, const Quat& orientation,
-                    const std::function<void(const Sample&)>& observer = {});
+                    const std::function<void(const Sample&)>& observer = {}, double sample_dt = 0);
 
 }  // namespace repose
