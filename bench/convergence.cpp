@@ -6,7 +6,8 @@
 //
 //   repose_convergence [--drops N] [--seed S] [--dt-factor F] [--shape SPEC]...
 //
-// Units: SI (m, kg, s; g = 9.81), density 1000 kg/m³, no damping, as `repose poses` with --damping 0.
+// Units: SI (m, kg, s; g = 9.81), density 1000 kg/m³, damping C = 0.05·m·sqrt(g·L³) as `repose poses`'
+// default --damping-ratio (--damping-ratio R to change it).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -35,7 +36,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 int main(int argc, char** argv) {
   int drops = 100;
   std::uint64_t seed = 1;
-  double dt_factor = 1e-4;
+  double dt_factor = 1e-4, damping_ratio = 0.05;
   std::vector<std::string> shapes;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -46,16 +47,19 @@ int main(int argc, char** argv) {
       seed = std::strtoull(argv[++i], nullptr, 10);
     } else if (a == "--dt-factor" && more) {
       dt_factor = std::atof(argv[++i]);
+    } else if (a == "--damping-ratio" && more) {
+      damping_ratio = std::atof(argv[++i]);
     } else if (a == "--shape" && more) {
       shapes.emplace_back(argv[++i]);
     } else {
       std::fprintf(stderr,
-                   "usage: repose_convergence [--drops N] [--seed S] [--dt-factor F] [--shape SPEC]...\n");
+                   "usage: repose_convergence [--drops N] [--seed S] [--dt-factor F] [--damping-ratio R] "
+                   "[--shape SPEC]...\n");
       return 2;
     }
   }
-  if (drops < 1 || !(dt_factor > 0)) {
-    std::fprintf(stderr, "repose_convergence: --drops must be >= 1 and --dt-factor > 0\n");
+  if (drops < 1 || !(dt_factor > 0) || !(damping_ratio >= 0)) {
+    std::fprintf(stderr, "repose_convergence: --drops must be >= 1, --dt-factor > 0, --damping-ratio >= 0\n");
     return 2;
   }
   if (shapes.empty())
@@ -67,8 +71,10 @@ int main(int argc, char** argv) {
               "irregular:seed=1,n=4",
               "irregular:seed=7,n=6"};
 
-  std::printf("paper at dt = %g*sqrt(L/g) against adaptive (defaults), %d drops of seed %llu per shape\n",
-              dt_factor, drops, static_cast<unsigned long long>(seed));
+  std::printf(
+      "paper at dt = %g*sqrt(L/g) against adaptive (defaults), damping ratio %g, %d drops of seed %llu "
+      "per shape\n",
+      dt_factor, damping_ratio, drops, static_cast<unsigned long long>(seed));
   std::printf("%-34s %6s %9s %11s %12s %9s %9s\n", "shape", "drops", "same face", "time 1e-3", "worst dt/t",
               "paper s", "adapt s");
   int disagreements = 0;
@@ -77,8 +83,11 @@ int main(int argc, char** argv) {
     repose::SettleParams paper;
     paper.integrator = repose::Integrator::paper;
     paper.dt = dt_factor * std::sqrt(particle.length / paper.gravity);
-    repose::SettleParams adaptive;
+    paper.damping =
+        damping_ratio * particle.mass.mass * std::sqrt(paper.gravity * std::pow(particle.length, 3));
+    repose::SettleParams adaptive = paper;
     adaptive.integrator = repose::Integrator::adaptive;
+    adaptive.dt = 0;
     Comparison c;
     for (int i = 0; i < drops; ++i) {
       const repose::Quat q = repose::drop_orientation(seed, static_cast<std::uint64_t>(i));
@@ -100,9 +109,10 @@ int main(int argc, char** argv) {
         ++disagreements;
         std::printf(
             "  drop %d: paper face %d t %.9g (%s), adaptive face %d t %.9g (%s): repose settle '%s' "
-            "--orientation %s --density 1000 [--integrator paper --dt %.17g]\n",
+            "--orientation %s --density 1000 --damping %.17g [--integrator paper --dt %.17g]\n",
             i, a.rest_face, a.time, repose::to_string(a.status), b.rest_face, b.time,
-            repose::to_string(b.status), spec.c_str(), repose::format_orientation(q).c_str(), paper.dt);
+            repose::to_string(b.status), spec.c_str(), repose::format_orientation(q).c_str(), paper.damping,
+            paper.dt);
       }
     }
     std::printf("%-34s %6d %8.2f%% %10.2f%% %12.3g %9.2f %9.3f\n", spec.c_str(), c.drops,
