@@ -147,6 +147,12 @@ struct Settler::Impl {
   std::vector<double> next_z;         // scratch, heights at the end of a trial step
   std::vector<int> event_candidates;  // scratch, vertices that may cause an event within a step
   std::vector<char> in_contact;
+  // Adaptive integrator: vertex sets come from walks over the hull's edge graph (ConvexHull::neighbors), so
+  // a step costs about the vertices near the wall, not the hull's size; `z` is then valid only for the
+  // vertices of the last walk (the contact set, the last step's candidates).
+  std::vector<char> walk_visited, walk_member;  // scratch of hull size, all zero between uses
+  std::vector<int> walk_out, walk_union;        // scratch
+  int lowest_vertex = 0;                        // the lowest hull vertex at the last walk (its start)
   std::vector<std::vector<int>>
       first_vertex_faces;  // per hull vertex: the hull faces whose loop starts there
   std::vector<Phase> phases;
@@ -183,6 +189,8 @@ struct Settler::Impl {
     for (const Vec3& v : p.hull.vertices) hull_radius = std::max(hull_radius, v.norm());
     z.resize(n);
     in_contact.resize(n);
+    walk_visited.resize(n);
+    walk_member.resize(n);
     first_vertex_faces.resize(n);
     for (std::size_t f = 0; f < p.hull.faces.size(); ++f)
       first_vertex_faces[p.hull.faces[f].loop.front()].push_back(static_cast<int>(f));
@@ -218,6 +226,31 @@ struct Settler::Impl {
     const auto& verts = particle.hull.vertices;
     for (std::size_t k = 0; k < verts.size(); ++k)
       out[k] = support.world.z() + r3.dot(verts[k] - support.body);
+  }
+
+  // The hull vertices at most `level` above the wall at orientation `qq` about the current support, appended
+  // to `out` (in index order if `sorted`: the order of a contact list matters to its fit's round-off and
+  // to ties): a walk from the lowest vertex over the hull's edge graph (a linear function's sublevel sets on a
+  // convex polytope are connected), so the cost is the set and its border. The walk runs 1e-12·L beyond
+  // `level` and the exact test (the same arithmetic as heights()) picks the members.
+  void vertices_below(const Quat& qq, double level, std::vector<int>& out, bool sorted) {
+    const Vec3 r3 = qq.toRotationMatrix().row(2).transpose();
+    const Vec3 down = -r3;
+    lowest_vertex = particle.hull.support_vertex_from(down, lowest_vertex);
+    const double base = support.world.z() - r3.dot(support.body);  // height = base + r3·p
+    walk_out.clear();
+    particle.hull.vertices_at_least(down, -(level + event_tol - base), lowest_vertex, walk_out, walk_visited);
+    const std::size_t first = out.size();
+    for (int k : walk_out)
+      if (support.world.z() + r3.dot(particle.hull.vertices[k] - support.body) <= level) out.push_back(k);
+    if (sorted) std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
+  }
+
+  // The height of the lowest hull vertex at orientation q (a walk downhill from the last lowest vertex).
+  double lowest_height() {
+    const Vec3 r3 = q.toRotationMatrix().row(2).transpose();
+    lowest_vertex = particle.hull.support_vertex_from(-r3, lowest_vertex);
+    return support.world.z() + r3.dot(particle.hull.vertices[lowest_vertex] - support.body);
   }
 
   // ---- free fall
@@ -388,8 +421,7 @@ struct Settler::Impl {
     com = sim::com_position(support, q);
     t = step_end;
     ++steps;
-    if (!step_event) z.swap(next_z);
-    update_contacts(rot.omega, rot.omega.cross(com - support.world), /*heights_known=*/!step_event);
+    update_contacts(rot.omega, rot.omega.cross(com - support.world));
   }
 
   // Takes one integrator step from t and finds its first event (step_end: the event, or the step's end).
@@ -408,16 +440,24 @@ struct Settler::Impl {
       at[i] = i == 0 ? rot.q : integrator->orientation_at(times[i]);
       if (i > 0) arc += 2 * std::acos(std::min(1.0, std::abs(at[i - 1].dot(at[i]))));
     }
-    std::vector<double>& zz = next_z;
-    zz.resize(z.size());
-    heights(at[kEventSamples], zz);
     // The chord sum under-estimates the arc by O(h²) of it: a factor 2 covers that with room.
     const double swept = 2 * arc * reach_radius;
     const double level = smooth ? 0.0 : band + touch_tol;
+    // Candidates: the vertices within reach of an event at the start or at the end of the step, by two walks;
+    // their start heights (the baseline of the pierce test) are refreshed.
     std::vector<int>& candidates = event_candidates;
     candidates.clear();
-    for (std::size_t k = 0; k < zz.size(); ++k)
-      if (std::min(z[k], zz[k]) <= level + swept + event_tol) candidates.push_back(static_cast<int>(k));
+    walk_union.clear();
+    vertices_below(at[0], level + swept + event_tol, walk_union, false);
+    vertices_below(at[kEventSamples], level + swept + event_tol, walk_union, false);
+    for (int k : walk_union)
+      if (!walk_member[k]) {
+        walk_member[k] = 1;
+        candidates.push_back(k);
+      }
+    for (int k : candidates) walk_member[k] = 0;
+    const Vec3 r3 = at[0].toRotationMatrix().row(2).transpose();
+    for (int k : candidates) z[k] = support.world.z() + r3.dot(particle.hull.vertices[k] - support.body);
 
     bool pierced = false;
     int first = -1;
@@ -427,12 +467,23 @@ struct Settler::Impl {
     step_event = first > 0;
     step_band_entered = false;
     if (!step_event) return;
-    // Bisect the bracketing interval on the dense output (to 2^-48 of it).
+    // Bisect the bracketing interval on the dense output (to 2^-48 of it), over the candidates within reach
+    // of an event inside that interval alone.
+    const double sub_swept = 4 * std::acos(std::min(1.0, std::abs(at[first - 1].dot(at[first])))) * reach_radius;
+    const Vec3 r3_lo = at[first - 1].toRotationMatrix().row(2).transpose();
+    const Vec3 r3_hi = at[first].toRotationMatrix().row(2).transpose();
+    std::vector<int>& near = walk_out;
+    near.clear();
+    for (int k : candidates) {
+      const Vec3 d = particle.hull.vertices[k] - support.body;
+      const double z_lo = support.world.z() + r3_lo.dot(d), z_hi = support.world.z() + r3_hi.dot(d);
+      if (std::min(z_lo, z_hi) <= level + sub_swept + event_tol) near.push_back(k);
+    }
     double lo = times[first - 1], hi = times[first];
     bool hi_pierced = pierced;
     for (int i = 0; i < kBisections; ++i) {
       const double mid = 0.5 * (lo + hi);
-      if (adaptive_event_at(integrator->orientation_at(mid), candidates, pierced)) {
+      if (adaptive_event_at(integrator->orientation_at(mid), near, pierced)) {
         hi = mid;
         hi_pierced = pierced;
       } else {
@@ -467,17 +518,32 @@ struct Settler::Impl {
   // Recomputes the contact and touching sets, checks for rest, and switches the support if the contacts call
   // for another one. `omega` and `com_velocity` are the motion just before (for the impact law).
   void update_contacts(const Vec3& omega, const Vec3& com_velocity, bool heights_known = false) {
-    if (!heights_known) heights(q, z);
-    contact.clear();
+    // A margin of 1e-9·L: points that reach the band together (mirror images) join together, and a point
+    // sitting on the band's edge (on a rotation axis) does not flicker in and out with round-off.
+    const double contact_level = band + touch_tol;
+    if (adaptive) {
+      // Only the vertices near the wall, by a walk (the lowest vertex is among them).
+      for (int k : contact) in_contact[k] = 0;
+      contact.clear();
+      vertices_below(q, contact_level, contact, true);
+      const Vec3 r3 = q.toRotationMatrix().row(2).transpose();
+      for (int k : contact) {
+        z[k] = support.world.z() + r3.dot(particle.hull.vertices[k] - support.body);
+        in_contact[k] = 1;
+      }
+    } else {
+      if (!heights_known) heights(q, z);
+      contact.clear();
+      for (std::size_t k = 0; k < z.size(); ++k) {
+        in_contact[k] = z[k] <= contact_level;
+        if (in_contact[k]) contact.push_back(static_cast<int>(k));
+      }
+    }
     touching.clear();
     double lowest = INFINITY;
-    for (std::size_t k = 0; k < z.size(); ++k) {
+    for (int k : contact) {
       lowest = std::min(lowest, z[k]);
-      // A margin of 1e-9·L: points that reach the band together (mirror images) join together, and a point
-      // sitting on the band's edge (on a rotation axis) does not flicker in and out with round-off.
-      in_contact[k] = z[k] <= band + touch_tol;
-      if (in_contact[k]) contact.push_back(static_cast<int>(k));
-      if (z[k] <= touch_tol) touching.push_back(static_cast<int>(k));
+      if (z[k] <= touch_tol) touching.push_back(k);
     }
     max_penetration = std::max(max_penetration, -lowest);
 
@@ -568,8 +634,7 @@ struct Settler::Impl {
     com = sim::com_position(support, q);
     rot = {q, Vec3::Zero(), Vec3::Zero()};
     restart = true;
-    heights(q, z);
-    max_penetration = std::max(max_penetration, -*std::min_element(z.begin(), z.end()));
+    note_penetration();
     remember_axis(rot.omega);
   }
 
@@ -669,8 +734,7 @@ struct Settler::Impl {
     support_vertex = next_vertex;
     reach_radius = hull_radius + support.body.norm();
     com = sim::com_position(support, q);
-    heights(q, z);
-    max_penetration = std::max(max_penetration, -*std::min_element(z.begin(), z.end()));
+    note_penetration();
     rot.q = q;
     rot.momentum = momentum;
     rot.omega = sim::omega_from_momentum(body, support, q, momentum);
@@ -703,6 +767,18 @@ struct Settler::Impl {
     const Vec3 arm = lever.cross(Vec3::UnitZ());
     if (arm.squaredNorm() == 0) return false;
     return -normal_part.dot(arm) >= 0;  // the force needed at the hovering points is upward
+  }
+
+  // After the support or the pose changed: the lowest vertex's depth, if any, counts as penetration. The
+  // paper's integrator refreshes every height (its next step reads them); the adaptive one walks to the
+  // lowest vertex.
+  void note_penetration() {
+    if (adaptive) {
+      max_penetration = std::max(max_penetration, -lowest_height());
+      return;
+    }
+    heights(q, z);
+    max_penetration = std::max(max_penetration, -*std::min_element(z.begin(), z.end()));
   }
 
   void remember_axis(const Vec3& omega) {
