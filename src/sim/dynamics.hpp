@@ -30,7 +30,8 @@ struct Rotation {
   Vec3 momentum = Vec3::Zero();
 };
 
-/// dq/dt = ½ ω ⊗ q with ω in the world frame (Eq 9; q maps body to world), as Eigen's (x, y, z, w) coefficients.
+/// dq/dt = ½ ω ⊗ q with ω in the world frame (Eq 9; q maps body to world), as Eigen's (x, y, z, w)
+/// coefficients.
 Eigen::Vector4d quaternion_rate(const Quat& q, const Vec3& omega);
 
 /// World position of the centre of mass: the support point plus the rotated offset (Eq 3).

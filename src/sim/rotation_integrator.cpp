@@ -53,8 +53,8 @@ struct RotationIntegrator::Impl {
   double time_unit;
 
   Impl(const Body& body, double length, double tolerance, double max_step)
-      : dense(odeint::make_dense_output(tolerance, tolerance,
-                                        max_step / std::sqrt(length / body.gravity), Stepper())),
+      : dense(odeint::make_dense_output(tolerance, tolerance, max_step / std::sqrt(length / body.gravity),
+                                        Stepper())),
         time_unit(std::sqrt(length / body.gravity)) {
     motion.body = &body;
     motion.time_unit = time_unit;

@@ -1,0 +1,258 @@
+// After every step: the contact set and type (Algorithm 1), the paper's stability test (section 2.4), and the
+// support the contacts call for (impact_support.hpp for several points on the wall).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "settler.hpp"
+
+namespace repose {
+
+// Heights of all hull vertices for orientation `qq` about the current support (only the third row of R).
+void Settler::Impl::heights(const Quat& qq, std::vector<double>& out) const {
+  const Vec3 r3 = qq.toRotationMatrix().row(2).transpose();
+  const auto& verts = particle.hull.vertices;
+  for (std::size_t k = 0; k < verts.size(); ++k) out[k] = support.world.z() + r3.dot(verts[k] - support.body);
+}
+
+// Recomputes the contact and touching sets, checks for rest, and switches the support if the contacts call
+// for another one. `omega` and `com_velocity` are the motion just before (for the impact law).
+void Settler::Impl::update_contacts(const Vec3& omega, const Vec3& com_velocity, bool heights_known) {
+  // A margin of 1e-9·L: points that reach the band together (mirror images) join together, and a point
+  // sitting on the band's edge (on a rotation axis) does not flicker in and out with round-off.
+  const double contact_level = band + touch_tol;
+  if (adaptive) {
+    // Only the vertices near the wall, by a walk (the lowest vertex is among them).
+    for (int k : contact) in_contact[k] = 0;
+    contact.clear();
+    vertices_below(q, contact_level, contact, true);
+    const Vec3 r3 = q.toRotationMatrix().row(2).transpose();
+    for (int k : contact) {
+      z[k] = support.world.z() + r3.dot(particle.hull.vertices[k] - support.body);
+      in_contact[k] = 1;
+    }
+  } else {
+    if (!heights_known) heights(q, z);
+    contact.clear();
+    for (std::size_t k = 0; k < z.size(); ++k) {
+      in_contact[k] = z[k] <= contact_level;
+      if (in_contact[k]) contact.push_back(static_cast<int>(k));
+    }
+  }
+  touching.clear();
+  double lowest = INFINITY;
+  for (int k : contact) {
+    lowest = std::min(lowest, z[k]);
+    if (z[k] <= touch_tol) touching.push_back(k);
+  }
+  max_penetration = std::max(max_penetration, -lowest);
+
+  // The regression of Algorithm 1 is done on the contact points' footprints on the wall, so the fitted
+  // contact line lies in the wall plane: a hinge tilted by the ε band would make the particle swing about
+  // an unphysical equilibrium above the wall.
+  contact_points.clear();
+  footprints.clear();
+  for (int k : contact) {
+    contact_points.push_back(world_vertex(k));
+    footprints.emplace_back(contact_points.back().x(), contact_points.back().y(), 0.0);
+  }
+  sim::LineFit fit;
+  const ContactType new_type =
+      smooth ? ContactType::point : sim::classify_contact(footprints, rss_threshold, &fit);
+  set_type(new_type);
+
+  const Vec2 g(com.x(), com.y());
+  if (smooth) {
+    // Three or more points on the wall around the centre of mass: the discretised surface has landed on a
+    // face and the inelastic impact leaves no motion (this also ends the ever-faster rocking between the
+    // corners of the bottom face). That landing is the only rest: a damped particle creeps onto its facet.
+    if (touching.size() >= 3 && touching_points_hold(g) && come_to_rest()) return;
+  } else {
+    if (touching_points_hold(g) && come_to_rest()) return;
+    if (!finishing && paper_stability_test(contact_points, g)) finishing = true;
+  }
+  choose_support(fit, g, omega, com_velocity);
+  if (!smooth && kinetic_energy() < 1e-9 * body.mass * params.gravity * length) tip_off_edge_balance(g);
+  if (trace)
+    std::fprintf(stderr,
+                 "t=%.9g type=%s contact=%zu touching=%zu finishing=%d support=%d line=%d axis=%g,%g,%g "
+                 "omega=%g,%g,%g\n",
+                 t, to_string(type), contact.size(), touching.size(), finishing, support_vertex, support.line,
+                 support.axis.x(), support.axis.y(), support.axis.z(), rot.omega.x(), rot.omega.y(),
+                 rot.omega.z());
+}
+
+void Settler::Impl::set_type(ContactType new_type) {
+  if (!phases.empty() && phases.back().contact == new_type) return;
+  if (!phases.empty()) phases.back().t1 = t;
+  phases.push_back({new_type, t, t});
+  type = new_type;
+}
+
+// §2.4: a contact element (a hull face all of whose vertices are contacts) hit by the downward ray from the
+// centre of mass, or the centre of mass's projection inside the polygon of contact points. Either suffices.
+bool Settler::Impl::paper_stability_test(const std::vector<Vec3>& contact_points, const Vec2& g) const {
+  if (contact.size() < 3) return false;
+  const Vec3 down(0, 0, -1);
+  // Only faces whose first vertex is a contact can be contact elements; visiting just those keeps this
+  // check proportional to the contacts, not to the hull (thousands of faces for a scanned grain).
+  for (int first : contact)
+    for (int f : first_vertex_faces[first]) {
+      const HullFace& face = particle.hull.faces[f];
+      bool element = true;
+      for (int k : face.loop) element = element && in_contact[k];
+      if (!element) continue;
+      const Vec3 a = world_vertex(face.loop[0]);
+      for (std::size_t i = 1; i + 1 < face.loop.size(); ++i)
+        if (sim::ray_hits_triangle(com, down, a, world_vertex(face.loop[i]), world_vertex(face.loop[i + 1])))
+          return true;
+    }
+  // The polygon of the contact points' footprints; collinear contacts give a segment, whose margin is minus
+  // the distance to it (never positive): a line of contacts holds nothing by itself.
+  std::vector<Vec2> plan;
+  for (const Vec3& p : contact_points) plan.emplace_back(p.x(), p.y());
+  return sim::polygon_margin(sim::convex_hull_2d(plan, touch_tol), g) > 0;
+}
+
+// The support the contacts call for (see the file comment), and the switch to it if it is new.
+void Settler::Impl::choose_support(const sim::LineFit& fit, const Vec2& g, const Vec3& omega,
+                                   const Vec3& com_velocity) {
+  sim::Support next;
+  int next_vertex = support_vertex;
+  auto point_at = [&](int k) {
+    next = {world_vertex(k), particle.hull.vertices[k], false, Vec3::UnitX()};
+    next_vertex = k;
+  };
+  auto line_at = [&](int k, const Vec3& axis) {
+    point_at(k);
+    next.line = true;
+    next.axis = axis.normalized();
+  };
+
+  // Several points on the wall: the support that lets the others lift off (impact_support.hpp).
+  const sim::Impact impact{body, q, com, omega, com_velocity, length, touch_tol, dt};
+  touches.clear();
+  for (int k : touching) touches.push_back({k, world_vertex(k), particle.hull.vertices[k], z[k]});
+  auto take = [&](const sim::SupportChoice& c) {
+    next = c.support;
+    next_vertex = c.vertex;
+  };
+  const bool second_guess = stalled_steps < kStallLimit;
+
+  if (smooth) {
+    const sim::Touch current{support_vertex, world_vertex(support_vertex),
+                             particle.hull.vertices[support_vertex], z[support_vertex]};
+    take(sim::choose_smooth(impact, touches, current, g, second_guess));
+  } else if (touching.size() <= 1) {
+    // One point on the wall: the paper's kinematics from the contact set (Algorithm 1), a rotation about
+    // the best-fit line for a line contact, about the previous axis for a surface contact.
+    const int o = touching.empty() ? support_vertex : touching[0];
+    // The best-fit line is taken when the contact becomes a line and kept while the same point touches:
+    // refitting as hovering points enter and leave the band makes the axis flip back and forth between
+    // two lines, a cycle in which the particle never settles.
+    // A pivot chosen from the touching points is kept until a new point enters the band: switching straight
+    // back to the band's line would drive the point that just lifted into the wall again, a rocking cycle.
+    const bool keep_line = support.line && support_vertex == o;
+    const bool keep_point = !support.line && support_vertex == o && !band_entered;
+    Vec3 axis = fit.direction;
+    const bool line = type != ContactType::point && !keep_point;
+    if (keep_line)
+      axis = support.axis;
+    else if (type == ContactType::surface && has_prev_axis)
+      axis = prev_axis;
+    if (line && line_is_supported(o, axis)) {
+      line_at(o, axis);
+    } else {
+      point_at(o);
+    }
+  } else {
+    take(sim::choose_from_touching(impact, touches, g, second_guess));
+  }
+
+  const bool same = next_vertex == support_vertex && next.line == support.line &&
+                    (!next.line || std::abs(next.axis.dot(support.axis)) > 1 - 1e-14);
+  if (same) {
+    remember_axis(omega);
+    return;
+  }
+  // Keep a consistent axis sign across switches so momentum signs read naturally.
+  if (next.line && support.line && next.axis.dot(support.axis) < 0) next.axis = -next.axis;
+  const Vec3 momentum = sim::momentum_after_switch(body, q, com, omega, com_velocity, next);
+  // A new support that has sunk by round-off (≤ 1e-12·L) is lifted exactly onto the wall; one that touches
+  // from above (within 1e-9·L) stays where it is, so the switch never lowers the particle.
+  next.world.z() = std::max(next.world.z(), 0.0);
+  support = next;
+  support_vertex = next_vertex;
+  reach_radius = hull_radius + support.body.norm();
+  com = sim::com_position(support, q);
+  note_penetration();
+  rot.q = q;
+  rot.momentum = momentum;
+  rot.omega = sim::omega_from_momentum(body, support, q, momentum);
+  restart = true;
+  remember_axis(rot.omega);
+}
+
+// The points of a contact line other than the touching point O hover up to ε above the wall; they can only
+// push up. The line holds only if upward forces at them can take the part of the weight's moment about O
+// that the line constraint removes (the component normal to the axis); otherwise the particle would tip
+// about O away from them, and it rotates about the point instead. Without this, a line tilted by up to ε
+// would act as a frictionless hinge on which the particle swings like a pendulum for ever.
+bool Settler::Impl::line_is_supported(int o, const Vec3& axis) const {
+  const Vec3 origin = world_vertex(o);
+  const Vec3 e = axis.normalized();
+  const Vec3 moment = (com - origin).cross(Vec3(0, 0, -body.mass * params.gravity));
+  const Vec3 normal_part = moment - moment.dot(e) * e;
+  if (normal_part.norm() <= 1e-9 * moment.norm()) return true;
+  bool ahead = false, behind = false;
+  Vec3 lever = Vec3::Zero();
+  for (int k : contact) {
+    const Vec3 d = world_vertex(k) - origin;
+    if (k == o || d.norm() <= touch_tol) continue;
+    const double s = d.dot(e);
+    ahead = ahead || s > touch_tol;
+    behind = behind || s < -touch_tol;
+    lever += d;
+  }
+  if (ahead && behind) return true;  // hovering points on both sides of O: either sense can be held
+  const Vec3 arm = lever.cross(Vec3::UnitZ());
+  if (arm.squaredNorm() == 0) return false;
+  return -normal_part.dot(arm) >= 0;  // the force needed at the hovering points is upward
+}
+
+// After the support or the pose changed: the lowest vertex's depth, if any, counts as penetration. The
+// paper's integrator refreshes every height (its next step reads them); the adaptive one walks to the
+// lowest vertex.
+void Settler::Impl::note_penetration() {
+  if (adaptive) {
+    max_penetration = std::max(max_penetration, -lowest_height());
+    return;
+  }
+  heights(q, z);
+  max_penetration = std::max(max_penetration, -*std::min_element(z.begin(), z.end()));
+}
+
+void Settler::Impl::remember_axis(const Vec3& omega) {
+  if (support.line) {
+    prev_axis = support.axis;
+    has_prev_axis = true;
+  } else if (omega.norm() > 1e-12 * std::sqrt(params.gravity / length)) {
+    prev_axis = omega.normalized();
+    has_prev_axis = true;
+  }
+}
+
+int Settler::Impl::nearest_touching(const Vec2& p) const {
+  int best = touching[0];
+  double best_d = INFINITY;
+  for (int k : touching) {
+    const Vec3 w = world_vertex(k);
+    const double d = (Vec2(w.x(), w.y()) - p).norm();
+    if (d < best_d) {
+      best_d = d;
+      best = k;
+    }
+  }
+  return best;
+}
+}  // namespace repose

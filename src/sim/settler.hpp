@@ -1,0 +1,166 @@
+// Internal: the settling engine's per-run state (Settler::Impl) and its methods, defined by concept:
+//   settle.cpp          construction, step(), advance_to(), samples and results, the public API
+//   fall.cpp            the free fall (closed form) and the first touch
+//   paper_step.cpp      the paper's fixed step with bisection of events
+//   adaptive_step.cpp   the adaptive integrator's steps, its events on the dense output, vertex walks
+//   contact_update.cpp  the contact set, Algorithm 1, the paper's stability test, the support's choice
+//   rest.cpp            static equilibrium on touching points, the flush rest, edge balances
+// The Particle is shared read-only; an Impl is one run's state (MuJoCo's mjModel / mjData split).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <optional>
+#include <vector>
+
+#include "contact.hpp"
+#include "dynamics.hpp"
+#include "impact_support.hpp"
+#include "repose/sim/settle.hpp"
+#include "rotation_integrator.hpp"
+#include "stability.hpp"
+
+namespace repose {
+
+struct Settler::Impl {
+  static constexpr int kBisections = 48;  // locates an event to 2^-48 of a step: far below 1e-9·L of motion
+  // After this many near-empty steps, contact choices stop second-guessing.
+  static constexpr int kStallLimit = 20;
+  // An edge balance (no motion, the centre of mass over the edge within 1e-9·L) is an unstable equilibrium,
+  // not a rest: the particle is turned about the edge until its centre of mass is this far (× L) beyond it
+  // and falls from there. Ten times the touching tolerance, so round-off never puts it back on the balance;
+  // the fall from an offset δ takes about ln(d/δ)/λ (d: centre of mass to edge, λ: the inverted pendulum's
+  // rate).
+  static constexpr double kBalanceOffset = 1e-8;
+  // The adaptive integrator's automatic longest step (× sqrt(L/g)): contact decisions (line support, the
+  // paper's stability test, the balance check) are re-evaluated at the end of every step.
+  static constexpr double kAdaptiveMaxStep = 0.05;
+  // The adaptive step is searched for events at this many evenly spaced instants of its dense output, so a
+  // vertex that dips below the wall and back up inside one step is still caught.
+  static constexpr int kEventSamples = 8;
+
+  const Particle& particle;
+  SettleParams params;
+  sim::Body body;
+  double length = 0;         // L
+  double band = 0;           // ε (length)
+  double touch_tol = 0;      // a vertex this close to the wall is touching it
+  double event_tol = 0;      // a vertex this far below the wall triggers a touch event
+  double rss_threshold = 0;  // Algorithm 1 line/surface threshold (length²)
+  double dt = 0;
+  double max_time = 0;
+  bool smooth = false;
+  bool adaptive = false;  // Integrator::adaptive
+  std::optional<sim::RotationIntegrator> integrator;
+  double hull_radius = 0;   // largest distance of a hull vertex from the centre of mass
+  double reach_radius = 0;  // largest distance of a hull vertex from the current support
+
+  // Per-run state.
+  double t = 0;
+  double limit = INFINITY;  // advance_to(): no step goes past this time
+  long steps = 0;
+  Status status = Status::running;
+  bool falling = false;
+  double fall_speed = 0;          // downward
+  double touch_time = 0;          // when the falling particle reaches the wall
+  long fall_steps = 0;            // grid steps of the fall taken (it steps to multiples of dt)
+  double lowest_body_height = 0;  // min over hull vertices of (R p).z, constant while falling
+  Quat q = Quat::Identity();
+  Vec3 com = Vec3::Zero();
+  sim::Support support;
+  sim::Rotation rot;
+  int support_vertex = -1;
+  bool restart = true;   // adaptive: the support or the motion changed, so the integrator starts afresh
+  bool in_step = false;  // adaptive: inside an integrator step (stopped in it by advance_to())
+  double step_start = 0, step_end = 0;  // adaptive: the current step: its start, its first event or end
+  bool step_event = false, step_band_entered = false;
+  bool finishing = false;
+  bool trace = std::getenv("REPOSE_TRACE") != nullptr;  // debugging aid: one line per step on stderr
+  bool band_entered = true;  // a point entered the ε band in the last step (or contact just began)
+  int stalled_steps = 0;     // consecutive steps an event cut to (almost) nothing
+  bool has_prev_axis = false;
+  Vec3 prev_axis = Vec3::UnitX();
+  ContactType type = ContactType::free_fall;
+  std::vector<double> z;            // world heights of the hull vertices
+  std::vector<int> contact;         // hull vertices within ε
+  std::vector<int> touching;        // hull vertices on the wall
+  std::vector<sim::Touch> touches;  // scratch, the touching vertices for the impact rule
+  std::vector<Vec3>
+      contact_points;  // scratch, world coordinates of `contact` (kept to avoid allocating per step)
+  std::vector<Vec3> footprints;       // scratch, their projections on the wall
+  std::vector<double> next_z;         // scratch, heights at the end of a trial step
+  std::vector<int> event_candidates;  // scratch, vertices that may cause an event within a step
+  std::vector<char> in_contact;
+  // Adaptive integrator: vertex sets come from walks over the hull's edge graph (ConvexHull::neighbors), so
+  // a step costs about the vertices near the wall, not the hull's size; `z` is then valid only for the
+  // vertices of the last walk (the contact set, the last step's candidates).
+  std::vector<char> walk_visited, walk_member;  // scratch of hull size, all zero between uses
+  std::vector<int> walk_out, walk_union;        // scratch
+  int lowest_vertex = 0;                        // the lowest hull vertex at the last walk (its start)
+  std::vector<std::vector<int>>
+      first_vertex_faces;  // per hull vertex: the hull faces whose loop starts there
+  std::vector<Phase> phases;
+  double max_penetration = 0;
+  double energy_start = 0;
+  long unconverged = 0;
+  RestKind rest = RestKind::none;
+  int rest_face = -1;
+  std::vector<Vec3> rest_points;
+
+  // ---- life cycle and output (settle.cpp)
+  Impl(const Particle& p, const SettleParams& prm, const Quat& orientation);
+  bool step();
+  bool advance_to(double time);
+  Sample sample() const;
+  SettleResult result() const;
+  double potential_energy() const { return body.mass * params.gravity * com.z(); }
+  double kinetic_energy() const;
+
+  // ---- geometry of the pose
+  Vec3 world_vertex(int k) const { return support.world + q * (particle.hull.vertices[k] - support.body); }
+  void heights(const Quat& qq, std::vector<double>& out) const;  // every hull vertex (contact_update.cpp)
+  void vertices_below(const Quat& qq, double level, std::vector<int>& out, bool sorted);  // adaptive_step.cpp
+  double lowest_height();                                                                 // adaptive_step.cpp
+
+  // ---- free fall (fall.cpp)
+  void fall_step();
+  void begin_contact(const Vec3& com_velocity);
+
+  // ---- rotation steps and their events (paper_step.cpp, adaptive_step.cpp)
+  // Whether vertex k, now at height zk, has (since the start of the step) passed below the wall, or entered
+  // (left) the ε band. Below-the-wall is measured from where the vertex started, so a vertex that already
+  // touches within round-off does not re-trigger at once.
+  bool pierces(std::size_t k, double zk) const {
+    return zk < std::max(std::min(z[k], 0.0), -100 * event_tol) - event_tol;
+  }
+  bool enters_band(std::size_t k, double zk) const {
+    return !smooth && !finishing && !in_contact[k] && zk <= band;
+  }
+  bool leaves_band(std::size_t k, double zk) const {
+    return !smooth && !finishing && in_contact[k] && zk > band + touch_tol;
+  }
+  bool event_at(const Quat& qq, const std::vector<int>& candidates, bool& pierced) const;
+  void rotate();
+  void rotate_adaptive();
+  void begin_adaptive_step();
+  bool adaptive_event_at(const Quat& qq, const std::vector<int>& candidates, bool& pierced) const;
+
+  // ---- contacts, stability and supports (contact_update.cpp)
+  void update_contacts(const Vec3& omega, const Vec3& com_velocity, bool heights_known = false);
+  void set_type(ContactType new_type);
+  bool paper_stability_test(const std::vector<Vec3>& contact_points, const Vec2& g) const;
+  void choose_support(const sim::LineFit& fit, const Vec2& g, const Vec3& omega, const Vec3& com_velocity);
+  bool line_is_supported(int o, const Vec3& axis) const;
+  void note_penetration();
+  void remember_axis(const Vec3& omega);
+  int nearest_touching(const Vec2& p) const;
+
+  // ---- static equilibrium and rest (rest.cpp)
+  std::vector<Vec2> touching_polygon() const;
+  bool touching_points_hold(const Vec2& g) const;
+  void tip_off_edge_balance(const Vec2& g);
+  bool come_to_rest();
+};
+
+}  // namespace repose
