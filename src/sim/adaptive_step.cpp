@@ -98,14 +98,17 @@ void Settler::Impl::begin_adaptive_step() {
   const Vec3 r3 = at[0].toRotationMatrix().row(2).transpose();
   for (int k : candidates) z[k] = support.world.z() + r3.dot(particle.hull.vertices[k] - support.body);
 
-  bool pierced = false;
+  bool pierced = false, entered = false;
   int first = -1;
   for (int i = 1; i <= kEventSamples && first < 0; ++i)
-    if (adaptive_event_at(at[i], candidates, pierced)) first = i;
+    if (adaptive_event_at(at[i], candidates, pierced, entered)) first = i;
   step_end = t1;
   step_event = first > 0;
   step_band_entered = false;
-  if (!step_event) return;
+  if (!step_event) {
+    locate_decision_change(t0, t1);
+    return;
+  }
   // Bisect the bracketing interval on the dense output (to 2^-48 of it), over the candidates within reach
   // of an event inside that interval alone.
   const double sub_swept =
@@ -120,33 +123,83 @@ void Settler::Impl::begin_adaptive_step() {
     if (std::min(z_lo, z_hi) <= level + sub_swept + event_tol) near.push_back(k);
   }
   double lo = times[first - 1], hi = times[first];
-  bool hi_pierced = pierced;
+  bool hi_pierced = pierced, hi_entered = entered;
   for (int i = 0; i < kBisections; ++i) {
     const double mid = 0.5 * (lo + hi);
-    if (adaptive_event_at(integrator->orientation_at(mid), near, pierced)) {
+    if (adaptive_event_at(integrator->orientation_at(mid), near, pierced, entered)) {
       hi = mid;
       hi_pierced = pierced;
+      hi_entered = entered;
     } else {
       lo = mid;
     }
   }
-  // As in the fixed step: just after a band event, just before a vertex reaches the wall.
-  step_band_entered = !hi_pierced;
+  // As in the fixed step: just after a band event, just before a vertex reaches the wall. Only an entry
+  // counts as "a point entered the band" for the choice of support (a point that leaves it does not).
+  step_band_entered = !hi_pierced && hi_entered;
   step_end = hi_pierced ? lo : hi;
+  locate_decision_change(t0, lo);
+}
+
+// What the contact update decides from the pose for the current contact and touching sets: the contact type
+// (Algorithm 1 on the footprints), whether the touching points hold the centre of mass, whether the paper's
+// stability test passes, whether a line support still holds. Between membership events these change
+// continuously with the pose (the footprints and the centre of mass move), so each is a root of its own.
+// (A point reaching the wall is a touch event of its own, located from below the wall, not here.)
+Settler::Impl::Decision Settler::Impl::decision_at(const Quat& qq) {
+  const Quat q_now = q;
+  const Vec3 com_now = com;
+  q = qq;
+  com = sim::com_position(support, q);
+  contact_points.clear();
+  footprints.clear();
+  for (int k : contact) {
+    contact_points.push_back(world_vertex(k));
+    footprints.emplace_back(contact_points.back().x(), contact_points.back().y(), 0.0);
+  }
+  const Vec2 g(com.x(), com.y());
+  Decision d;
+  d.type = smooth ? ContactType::point : sim::classify_contact(footprints, rss_threshold);
+  d.hold = (!smooth || touching.size() >= 3) && touching_points_hold(g);
+  d.stable = !smooth && !finishing && paper_stability_test(contact_points, g);
+  d.line_holds = support.line && line_is_supported(support_vertex, support.axis);
+  q = q_now;
+  com = com_now;
+  return d;
+}
+
+// If the contact decisions at `t_end` differ from those at the step's start `t0`, the step is cut just after
+// the first change (bisection on the dense output): the contact update then decides there, as the paper's
+// fixed step does at dt → 0.
+void Settler::Impl::locate_decision_change(double t0, double t_end) {
+  const Decision start = decision_at(rot.q);
+  if (decision_at(integrator->orientation_at(t_end)) == start) return;
+  double lo = t0, hi = t_end;
+  for (int i = 0; i < kBisections; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (decision_at(integrator->orientation_at(mid)) == start)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  step_end = hi;
+  step_event = true;
+  step_band_entered = false;
 }
 
 // The adaptive integrator's events: those of the fixed step, and a contact leaving the ε band (Algorithm
 // 1's contact set shrinks: a line or surface contact may become a point).
-bool Settler::Impl::adaptive_event_at(const Quat& qq, const std::vector<int>& candidates,
-                                      bool& pierced) const {
+bool Settler::Impl::adaptive_event_at(const Quat& qq, const std::vector<int>& candidates, bool& pierced,
+                                      bool& entered) const {
   const Vec3 r3 = qq.toRotationMatrix().row(2).transpose();
-  bool event = false;
-  pierced = false;
+  bool left = false;
+  pierced = entered = false;
   for (int k : candidates) {
     const double zk = support.world.z() + r3.dot(particle.hull.vertices[k] - support.body);
     pierced = pierced || pierces(k, zk);
-    event = event || pierced || enters_band(k, zk) || leaves_band(k, zk);
+    entered = entered || enters_band(k, zk);
+    left = left || leaves_band(k, zk);
   }
-  return event;
+  return pierced || entered || left;
 }
 }  // namespace repose

@@ -144,7 +144,15 @@ struct Settler::Impl {
   void rotate();
   void rotate_adaptive();
   void begin_adaptive_step();
-  bool adaptive_event_at(const Quat& qq, const std::vector<int>& candidates, bool& pierced) const;
+  bool adaptive_event_at(const Quat& qq, const std::vector<int>& candidates, bool& pierced,
+                         bool& entered) const;
+  struct Decision {
+    ContactType type = ContactType::point;
+    bool hold = false, stable = false, line_holds = false;
+    bool operator==(const Decision&) const = default;
+  };
+  Decision decision_at(const Quat& qq);
+  void locate_decision_change(double t0, double t_end);
 
   // ---- contacts, stability and supports (contact_update.cpp)
   void update_contacts(const Vec3& omega, const Vec3& com_velocity, bool heights_known = false);
