@@ -60,7 +60,19 @@ void Settler::Impl::rotate_adaptive() {
   com = sim::com_position(support, q);
   t = step_end;
   ++steps;
+  // The decisions found at this step's end hold at the next step's start if the update changes nothing they
+  // depend on (the same contact and touching points, support and phase): then they are not recomputed.
+  const bool keep = end_decision_known;
+  decision_contact.assign(contact.begin(), contact.end());
+  decision_touching.assign(touching.begin(), touching.end());
+  const sim::Support support_before = support;
+  const int vertex_before = support_vertex;
+  const bool finishing_before = finishing;
   update_contacts(rot.omega, rot.omega.cross(com - support.world));
+  decision_cached = keep && !restart && contact == decision_contact && touching == decision_touching &&
+                    support_vertex == vertex_before && support.line == support_before.line &&
+                    support.axis == support_before.axis && support.world == support_before.world &&
+                    finishing == finishing_before;
 }
 
 // Takes one integrator step from t and finds its first event (step_end: the event, or the step's end).
@@ -172,8 +184,14 @@ Settler::Impl::Decision Settler::Impl::decision_at(const Quat& qq) {
 // the first change (bisection on the dense output): the contact update then decides there, as the paper's
 // fixed step does at dt → 0.
 void Settler::Impl::locate_decision_change(double t0, double t_end) {
-  const Decision start = decision_at(rot.q);
-  if (decision_at(integrator->orientation_at(t_end)) == start) return;
+  const Decision start = decision_cached ? cached_decision : decision_at(rot.q);
+  decision_cached = false;
+  const Decision end = decision_at(integrator->orientation_at(t_end));
+  end_decision_known = !step_event && end == start;
+  if (end == start) {
+    cached_decision = end;
+    return;
+  }
   double lo = t0, hi = t_end;
   for (int i = 0; i < kBisections; ++i) {
     const double mid = 0.5 * (lo + hi);

@@ -152,6 +152,10 @@ struct Settler::Impl {
     bool operator==(const Decision&) const = default;
   };
   Decision decision_at(const Quat& qq);
+  Decision cached_decision;         // the decisions at the current step's start, if decision_cached
+  bool decision_cached = false;     // (set when the last update changed nothing they depend on)
+  bool end_decision_known = false;  // the last step ended without an event, its end decisions known
+  std::vector<int> decision_contact, decision_touching;  // scratch: the sets before an update
   void locate_decision_change(double t0, double t_end);
 
   // ---- contacts, stability and supports (contact_update.cpp)
