@@ -15,9 +15,9 @@
 // 30-60 s on 2 threads in the Release build; the sanitizer build runs a reduced sweep of cheap shapes.
 // Environment (for larger local sweeps): REPOSE_PROPERTY_DROPS (default 10000 in optimised builds, 8 in
 // debug/sanitizer builds), REPOSE_PROPERTY_FIRST (first case index, default 0), REPOSE_PROPERTY_SEED (master
-// seed), REPOSE_PROPERTY_THREADS (default 2), REPOSE_PROPERTY_TOLERANCE (the adaptive integrator's tolerance), REPOSE_PROPERTY_FULL (1: the full case mix, see make_case),
-// REPOSE_PROPERTY_LOG (a CSV file, one line per run). The summary is printed with std::cout (ctest -V shows
-// it).
+// seed), REPOSE_PROPERTY_THREADS (default 2), REPOSE_PROPERTY_TOLERANCE (the adaptive integrator's
+// tolerance), REPOSE_PROPERTY_FULL (1: the full case mix, see make_case), REPOSE_PROPERTY_LOG (a CSV file,
+// one line per run). The summary is printed with std::cout (ctest -V shows it).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -199,7 +199,8 @@ void sweep_and_check(long default_drops, bool default_full, Integrator integrato
   const int count = static_cast<int>(env_long("REPOSE_PROPERTY_DROPS", default_drops));
   const int threads = static_cast<int>(std::max(1L, env_long("REPOSE_PROPERTY_THREADS", 2)));
   const char* tol_text = std::getenv("REPOSE_PROPERTY_TOLERANCE");
-  const double tolerance = tol_text != nullptr && *tol_text != '\0' ? std::atof(tol_text) : SettleParams{}.tolerance;
+  const double tolerance =
+      tol_text != nullptr && *tol_text != '\0' ? std::atof(tol_text) : SettleParams{}.tolerance;
   const Sweep s = run_sweep(seed, first, count, threads, full, integrator, tolerance);
   print_summary(s, std::cout);
   if (const char* log = std::getenv("REPOSE_PROPERTY_LOG"); log != nullptr && *log != '\0') {
