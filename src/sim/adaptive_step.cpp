@@ -8,6 +8,15 @@
 
 namespace repose {
 
+namespace {
+// An upper bound of the rotation angle 2·acos(|a·b|) between two unit quaternions, without the acos: with
+// d = |a·b| in [0, 1], acos(d) / sqrt(2·(1 − d)) rises from 1 at d = 1 to (π/2)/√2 < 1.1108 at d = 0.
+double angle_bound(const Quat& a, const Quat& b) {
+  const double d = std::min(1.0, std::abs(a.dot(b)));
+  return 2 * 1.1108 * std::sqrt(2 * (1 - d));
+}
+}  // namespace
+
 // The hull vertices at most `level` above the wall at orientation `qq` about the current support, appended
 // to `out` (in index order if `sorted`: the order of a contact list matters to its fit's round-off and
 // to ties): a walk from the lowest vertex over the hull's edge graph (a linear function's sublevel sets on a
@@ -89,7 +98,7 @@ void Settler::Impl::begin_adaptive_step() {
   for (int i = 0; i <= kEventSamples; ++i) {
     times[i] = i == kEventSamples ? t1 : t0 + (t1 - t0) * i / kEventSamples;
     at[i] = i == 0 ? rot.q : integrator->orientation_at(times[i]);
-    if (i > 0) arc += 2 * std::acos(std::min(1.0, std::abs(at[i - 1].dot(at[i]))));
+    if (i > 0) arc += angle_bound(at[i - 1], at[i]);
   }
   // The chord sum under-estimates the arc by O(h²) of it: a factor 2 covers that with room.
   const double swept = 2 * arc * reach_radius;
@@ -123,8 +132,7 @@ void Settler::Impl::begin_adaptive_step() {
   }
   // Bisect the bracketing interval on the dense output (to 2^-48 of it), over the candidates within reach
   // of an event inside that interval alone.
-  const double sub_swept =
-      4 * std::acos(std::min(1.0, std::abs(at[first - 1].dot(at[first])))) * reach_radius;
+  const double sub_swept = 2 * angle_bound(at[first - 1], at[first]) * reach_radius;
   const Vec3 r3_lo = at[first - 1].toRotationMatrix().row(2).transpose();
   const Vec3 r3_hi = at[first].toRotationMatrix().row(2).transpose();
   std::vector<int>& near = walk_out;

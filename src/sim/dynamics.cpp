@@ -27,6 +27,22 @@ Mat3 inertia_about_support(const Body& body, const Support& s, const Quat& q) {
   return R * body_inertia_about_support(body, s) * R.transpose();
 }
 
+SupportInertia support_inertia(const Body& body, const Support& s) {
+  SupportInertia r;
+  r.inertia = body_inertia_about_support(body, s);
+  r.inverse = r.inertia.inverse();
+  return r;
+}
+
+Vec3 omega_from_momentum(const SupportInertia& inertia, const Support& s, const Quat& q,
+                         const Vec3& momentum) {
+  if (s.line) {
+    const Vec3 e = q.conjugate() * s.axis;
+    return (momentum.dot(s.axis) / e.dot(inertia.inertia * e)) * s.axis;
+  }
+  return q * Vec3(inertia.inverse * (q.conjugate() * momentum));
+}
+
 Vec3 omega_from_momentum(const Body& body, const Support& s, const Quat& q, const Vec3& momentum) {
   const Mat3 I = body_inertia_about_support(body, s);
   if (s.line) {

@@ -43,6 +43,16 @@ Mat3 inertia_about_support(const Body& body, const Support& s, const Quat& q);
 /// Angular velocity from angular momentum (Eq 15; for a line, ω = ℓ / (eᵀ I_O e) · e).
 Vec3 omega_from_momentum(const Body& body, const Support& s, const Quat& q, const Vec3& momentum);
 
+/// The same with the support's constants computed once (the inertia about it in the body frame and its
+/// inverse), for an integrator that evaluates it many times per support; bit-identical to the above.
+struct SupportInertia {
+  Mat3 inertia = Mat3::Identity();  ///< I_O, body frame
+  Mat3 inverse = Mat3::Identity();  ///< I_O⁻¹ (point supports)
+};
+SupportInertia support_inertia(const Body& body, const Support& s);
+Vec3 omega_from_momentum(const SupportInertia& inertia, const Support& s, const Quat& q,
+                         const Vec3& momentum);
+
 /// Eq 4 (point) or Eq 17 (line, projected on the axis): weight moment about the support minus C·ω.
 Vec3 moment(const Body& body, const Support& s, const Quat& q, const Vec3& omega);
 

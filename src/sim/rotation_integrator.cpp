@@ -21,6 +21,7 @@ Quat quat_of(const State& y) {
 struct Motion {
   const Body* body = nullptr;
   Support support;
+  SupportInertia inertia;    // of `support`, computed once per support
   double momentum_unit = 1;  // m·L²/T
   double time_unit = 1;      // T: the state's time derivatives are per T (see operator())
 
@@ -28,7 +29,7 @@ struct Motion {
     Rotation r;
     r.q = quat_of(y);
     r.momentum = momentum_unit * Vec3(y[4], y[5], y[6]);
-    r.omega = omega_from_momentum(*body, support, r.q, r.momentum);
+    r.omega = omega_from_momentum(inertia, support, r.q, r.momentum);
     return r;
   }
 
@@ -70,6 +71,7 @@ RotationIntegrator& RotationIntegrator::operator=(RotationIntegrator&&) noexcept
 
 void RotationIntegrator::start(const Support& support, const Rotation& state, double t, double first_step) {
   impl_->motion.support = support;
+  impl_->motion.inertia = support_inertia(*impl_->motion.body, support);
   State y;
   const Quat q = state.q.normalized();
   y[0] = q.x();
