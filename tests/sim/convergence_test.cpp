@@ -51,3 +51,40 @@ TEST(Convergence, AdaptiveAndSmallStepPaperSchemeAgreeDropByDrop) {
 
 }  // namespace
 }  // namespace repose
+
+namespace repose {
+namespace {
+
+// Every contact decision of the adaptive integrator is an event located on its dense output, so its result
+// cannot depend on how long its steps are allowed to be: the default longest step 0.05·τ and one 50× shorter
+// must give the same run. A decision taken only at step ends (not located) would make the time to rest move
+// by up to a step. 15 drops of seed 2 per shape, damping ratio 0.05. Measured: the same face everywhere, the
+// largest relative difference of the time to rest 9.6e-11; tolerance 1e-9. (Open, issue 12: on
+// `irregular:seed=3,n=3` one of these drops still ends on another face at the shorter step, a decision not
+// yet located; docs/performance.md.)
+TEST(Convergence, TheAdaptiveRunDoesNotDependOnItsLongestStep) {
+  for (const char* spec :
+       {"box:x=1,y=2,z=3", "tetrahedron:edge=1", "irregular:seed=1,n=4", "irregular:seed=7,n=4"}) {
+    const Particle particle = load_particle(spec, 1000.0);
+    SettleParams coarse;
+    coarse.damping = 0.05 * particle.mass.mass * std::sqrt(coarse.gravity * std::pow(particle.length, 3));
+    SettleParams fine = coarse;
+    fine.dt = 1e-3 * std::sqrt(particle.length / fine.gravity);
+    double worst = 0;
+    for (std::uint64_t i = 0; i < 15; ++i) {
+      const Quat q = drop_orientation(2, i);
+      const SettleResult a = settle(particle, coarse, q);
+      const SettleResult b = settle(particle, fine, q);
+      ASSERT_EQ(a.status, Status::rest) << spec << " drop " << i;
+      ASSERT_EQ(b.status, Status::rest) << spec << " drop " << i;
+      EXPECT_EQ(a.rest_face, b.rest_face) << spec << " drop " << i << ": " << format_orientation(q);
+      const double rel = std::abs(a.time - b.time) / b.time;
+      worst = std::max(worst, rel);
+      EXPECT_LT(rel, 1e-9) << spec << " drop " << i << ": " << format_orientation(q);
+    }
+    std::printf("%s: largest relative difference of the time to rest %.3g\n", spec, worst);
+  }
+}
+
+}  // namespace
+}  // namespace repose
