@@ -28,10 +28,10 @@ TEST(RotationIntegrator, FreeSymmetricTopFollowsTheClosedForm) {
     return Quat(Eigen::AngleAxisd(precession * t, momentum.normalized())) * q0 *
            Quat(Eigen::AngleAxisd(spin * t, Vec3::UnitZ()));
   };
-  // Compared at the middle and the end of every step for 2 s (a third of a turn of precession, 128 steps). Measured
-  // largest angle between the integrated and the exact orientation 3.3e-11 rad; tolerance 3e-10. The energy
-  // ½·ω·L = |L|²/(2·I1) + L3²·(1/I3 − 1/I1)/2 depends only on L3, which errors of spin or precession leave
-  // alone: measured equal to round-off; tolerance 1e-13.
+  // Compared at the middle and the end of every step for 2 s (a third of a turn of precession, 128 steps).
+  // Measured largest angle between the integrated and the exact orientation 3.3e-11 rad; tolerance 3e-10. The
+  // energy ½·ω·L = |L|²/(2·I1) + L3²·(1/I3 − 1/I1)/2 depends only on L3, which errors of spin or precession
+  // leave alone: measured equal to round-off; tolerance 1e-13.
   const double energy0 = 0.5 * integrator.state_at(0.0).omega.dot(momentum);
   double worst_angle = 0, worst_energy = 0;
   int steps = 0;
@@ -46,7 +46,8 @@ TEST(RotationIntegrator, FreeSymmetricTopFollowsTheClosedForm) {
       worst_energy = std::max(worst_energy, std::abs(0.5 * r.omega.dot(r.momentum) - energy0) / energy0);
     }
   }
-  std::printf("%d steps: largest angle error %.3g rad, energy error %.3g\n", steps, worst_angle, worst_energy);
+  std::printf("%d steps: largest angle error %.3g rad, energy error %.3g\n", steps, worst_angle,
+              worst_energy);
   EXPECT_GT(steps, 10);
   EXPECT_LT(worst_angle, 3e-10);
   EXPECT_LT(worst_energy, 1e-13);
