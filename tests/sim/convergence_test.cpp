@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <repose/model/orientation.hpp>
 #include <repose/model/particle.hpp>
 #include <repose/poses/sampling.hpp>
@@ -14,6 +15,32 @@
 
 namespace repose {
 namespace {
+
+// Settles drops 0 .. n-1 of `seed` with both parameter sets (damping ratio 0.05 as `repose poses`; `vary`
+// turns the first set into the second) and checks that every drop rests on the same face after times within
+// `tolerance` of each other (relative). Prints the largest difference.
+void expect_same_runs(const char* spec, std::uint64_t seed, int n, double tolerance,
+                      const std::function<void(SettleParams&, double tau)>& vary) {
+  const Particle particle = load_particle(spec, 1000.0);
+  SettleParams a_params;
+  a_params.damping = 0.05 * particle.mass.mass * std::sqrt(a_params.gravity * std::pow(particle.length, 3));
+  SettleParams b_params = a_params;
+  vary(b_params, std::sqrt(particle.length / b_params.gravity));
+  double worst = 0;
+  for (int i = 0; i < n; ++i) {
+    const Quat q = drop_orientation(seed, static_cast<std::uint64_t>(i));
+    const SettleResult a = settle(particle, a_params, q);
+    const SettleResult b = settle(particle, b_params, q);
+    ASSERT_EQ(a.status, Status::rest) << spec << " drop " << i;
+    ASSERT_EQ(b.status, Status::rest) << spec << " drop " << i;
+    EXPECT_EQ(a.rest_face, b.rest_face) << spec << " drop " << i << ": " << format_orientation(q);
+    if (a.rest_face != b.rest_face) continue;
+    const double rel = std::abs(a.time - b.time) / b.time;
+    worst = std::max(worst, rel);
+    EXPECT_LT(rel, tolerance) << spec << " drop " << i << ": " << format_orientation(q);
+  }
+  std::printf("%s: largest relative difference of the time to rest %.3g\n", spec, worst);
+}
 
 // 20 drops of seed 1 per shape (uniform random orientations, from rest), damping ratio 0.05 as `repose
 // poses`; the paper's scheme at dt = 2e-4·sqrt(L/g). Every drop must land on the same face. The time to rest
@@ -26,34 +53,12 @@ namespace {
 // either way; none of these drops does.
 TEST(Convergence, AdaptiveAndSmallStepPaperSchemeAgreeDropByDrop) {
   for (const char* spec : {"box:x=1,y=2,z=3", "tetrahedron:edge=1", "cylinder:r=0.5,h=1,n=16",
-                           "irregular:seed=1,n=4", "irregular:seed=7,n=4"}) {
-    const Particle particle = load_particle(spec, 1000.0);
-    SettleParams adaptive;
-    adaptive.damping = 0.05 * particle.mass.mass * std::sqrt(adaptive.gravity * std::pow(particle.length, 3));
-    SettleParams paper = adaptive;
-    paper.integrator = Integrator::paper;
-    paper.dt = 2e-4 * std::sqrt(particle.length / paper.gravity);
-    double worst = 0;
-    for (std::uint64_t i = 0; i < 20; ++i) {
-      const Quat q = drop_orientation(1, i);
-      const SettleResult a = settle(particle, adaptive, q);
-      const SettleResult b = settle(particle, paper, q);
-      ASSERT_EQ(a.status, Status::rest) << spec << " drop " << i;
-      ASSERT_EQ(b.status, Status::rest) << spec << " drop " << i;
-      EXPECT_EQ(a.rest_face, b.rest_face) << spec << " drop " << i << ": " << format_orientation(q);
-      if (a.rest_face != b.rest_face) continue;
-      worst = std::max(worst, std::abs(a.time - b.time) / b.time);
-      EXPECT_NEAR(a.time, b.time, 1e-3 * b.time) << spec << " drop " << i << ": " << format_orientation(q);
-    }
-    std::printf("%s: largest relative difference of the time to rest %.3g\n", spec, worst);
-  }
+                           "irregular:seed=1,n=4", "irregular:seed=7,n=4"})
+    expect_same_runs(spec, 1, 20, 1e-3, [](SettleParams& p, double tau) {
+      p.integrator = Integrator::paper;
+      p.dt = 2e-4 * tau;
+    });
 }
-
-}  // namespace
-}  // namespace repose
-
-namespace repose {
-namespace {
 
 // Every contact decision of the adaptive integrator is an event located on its dense output, so its result
 // cannot depend on how long its steps are allowed to be: the default longest step 0.05·τ and one 50× shorter
@@ -64,26 +69,8 @@ namespace {
 // yet located; docs/performance.md.)
 TEST(Convergence, TheAdaptiveRunDoesNotDependOnItsLongestStep) {
   for (const char* spec :
-       {"box:x=1,y=2,z=3", "tetrahedron:edge=1", "irregular:seed=1,n=4", "irregular:seed=7,n=4"}) {
-    const Particle particle = load_particle(spec, 1000.0);
-    SettleParams coarse;
-    coarse.damping = 0.05 * particle.mass.mass * std::sqrt(coarse.gravity * std::pow(particle.length, 3));
-    SettleParams fine = coarse;
-    fine.dt = 1e-3 * std::sqrt(particle.length / fine.gravity);
-    double worst = 0;
-    for (std::uint64_t i = 0; i < 15; ++i) {
-      const Quat q = drop_orientation(2, i);
-      const SettleResult a = settle(particle, coarse, q);
-      const SettleResult b = settle(particle, fine, q);
-      ASSERT_EQ(a.status, Status::rest) << spec << " drop " << i;
-      ASSERT_EQ(b.status, Status::rest) << spec << " drop " << i;
-      EXPECT_EQ(a.rest_face, b.rest_face) << spec << " drop " << i << ": " << format_orientation(q);
-      const double rel = std::abs(a.time - b.time) / b.time;
-      worst = std::max(worst, rel);
-      EXPECT_LT(rel, 1e-9) << spec << " drop " << i << ": " << format_orientation(q);
-    }
-    std::printf("%s: largest relative difference of the time to rest %.3g\n", spec, worst);
-  }
+       {"box:x=1,y=2,z=3", "tetrahedron:edge=1", "irregular:seed=1,n=4", "irregular:seed=7,n=4"})
+    expect_same_runs(spec, 2, 15, 1e-9, [](SettleParams& p, double tau) { p.dt = 1e-3 * tau; });
 }
 
 }  // namespace
