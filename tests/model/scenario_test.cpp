@@ -107,6 +107,22 @@ TEST(ScenarioFile, RejectsTyposAndBadValues) {
   EXPECT_NE(message(R"({"particle": "box:x=1,y=1,z=1", "density": 1e400})").find("case.json: invalid JSON"),
             std::string::npos);
   EXPECT_EQ(message(R"({"particle": "box:x=1,y=1,z=1", "units": "cgs", "damping": 0.5})"), "accepted");
+  EXPECT_NE(message(R"({"particle": "box:x=1,y=1,z=1", "integrator": "rk4"})")
+                .find("case.json: unknown integrator 'rk4' (expected paper or adaptive)"),
+            std::string::npos);
+  EXPECT_NE(message(R"({"particle": "box:x=1,y=1,z=1", "tolerance": 0.1})").find("tolerance"),
+            std::string::npos);
+}
+
+// The integrator and its tolerance are scenario fields; absent, the library's defaults.
+TEST(ScenarioFile, ReadsTheIntegratorAndItsTolerance) {
+  const Scenario s = parse_scenario(
+      R"({"particle": "box:x=1,y=1,z=1", "integrator": "paper", "tolerance": 1e-9})", "s.json");
+  EXPECT_EQ(s.params.integrator, Integrator::paper);
+  EXPECT_EQ(s.params.tolerance, 1e-9);
+  const Scenario d = parse_scenario(R"({"particle": "box:x=1,y=1,z=1"})", "d.json");
+  EXPECT_EQ(d.params.integrator, SettleParams{}.integrator);
+  EXPECT_EQ(d.params.tolerance, SettleParams{}.tolerance);
 }
 
 }  // namespace

@@ -44,4 +44,25 @@ TEST(PosesStudyFile, PoseIndexOnePastTheEndIsRejected) {
   }
 }
 
+// The integrator and its tolerance are settings of a result file: they are written, read back, and results of
+// different integrators do not merge (their drops are not the same runs). A file from before the adaptive
+// integrator existed (no "integrator" field) was computed with the paper's.
+TEST(PosesStudyFile, TheIntegratorIsASettingThatRoundTripsAndBlocksMerging) {
+  const Particle particle = load_particle("box:x=1,y=2,z=3", 1.0);
+  const RestLandscape landscape = compute_rest_landscape(particle);
+  StudySettings settings;
+  settings.params.integrator = Integrator::paper;
+  settings.params.tolerance = 3e-10;
+  const PosesStudy paper = prepare_study(particle, landscape, settings);
+  const PosesStudy back = parse_poses_json(poses_json(paper), "paper.json");
+  EXPECT_EQ(back.params.integrator, Integrator::paper);
+  EXPECT_EQ(back.params.tolerance, 3e-10);
+  settings.params.integrator = Integrator::adaptive;
+  const PosesStudy adaptive = prepare_study(particle, landscape, settings);
+  EXPECT_EQ(parse_poses_json(poses_json(adaptive), "a.json").params.integrator, Integrator::adaptive);
+  EXPECT_THROW(merge_studies(paper, adaptive), Error);
+  const std::string old = replace_once(poses_json(adaptive), "\"integrator\": \"adaptive\",", "");
+  EXPECT_EQ(parse_poses_json(old, "old.json").params.integrator, Integrator::paper);
+}
+
 }  // namespace
