@@ -4,8 +4,11 @@
 // are compared: the same rest face, the same rest pose (`repose poses`' catalogue: for a smooth particle,
 // stable facets merged by persistence 1 % of L into the minimum they belong to), and the time to rest within
 // 1e-3 relative. Every disagreement is printed with the command line that reproduces it.
+// With --reference-tolerance R the reference is the adaptive integrator itself at tolerance R (the error of
+// the default tolerance, or of --tolerance T, against a much tighter one).
 //
-//   repose_convergence [--drops N] [--seed S] [--dt-factor F] [--shape SPEC]...
+//   repose_convergence [--drops N] [--seed S] [--dt-factor F] [--tolerance T] [--reference-tolerance R]
+//                      [--shape SPEC]...
 //
 // Units: SI (m, kg, s; g = 9.81), density 1000 kg/m³, damping C = 0.05·m·sqrt(g·L³) as `repose poses`'
 // default --damping-ratio (--damping-ratio R to change it).
@@ -39,7 +42,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 int main(int argc, char** argv) {
   int drops = 100;
   std::uint64_t seed = 1;
-  double dt_factor = 1e-4, damping_ratio = 0.05;
+  double dt_factor = 1e-4, damping_ratio = 0.05, tolerance = 0, reference_tolerance = 0;
   std::vector<std::string> shapes;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -52,17 +55,25 @@ int main(int argc, char** argv) {
       dt_factor = std::atof(argv[++i]);
     } else if (a == "--damping-ratio" && more) {
       damping_ratio = std::atof(argv[++i]);
+    } else if (a == "--tolerance" && more) {
+      tolerance = std::atof(argv[++i]);
+    } else if (a == "--reference-tolerance" && more) {
+      reference_tolerance = std::atof(argv[++i]);
     } else if (a == "--shape" && more) {
       shapes.emplace_back(argv[++i]);
     } else {
       std::fprintf(stderr,
                    "usage: repose_convergence [--drops N] [--seed S] [--dt-factor F] [--damping-ratio R] "
-                   "[--shape SPEC]...\n");
+                   "[--tolerance T] [--reference-tolerance R] [--shape SPEC]...\n");
       return 2;
     }
   }
-  if (drops < 1 || !(dt_factor > 0) || !(damping_ratio >= 0)) {
-    std::fprintf(stderr, "repose_convergence: --drops must be >= 1, --dt-factor > 0, --damping-ratio >= 0\n");
+  if (drops < 1 || !(dt_factor > 0) || !(damping_ratio >= 0) || !(tolerance >= 0) ||
+      !(reference_tolerance >= 0)) {
+    std::fprintf(
+        stderr,
+        "repose_convergence: --drops must be >= 1, --dt-factor > 0, --damping-ratio, --tolerance and "
+        "--reference-tolerance >= 0\n");
     return 2;
   }
   if (shapes.empty())
@@ -74,10 +85,14 @@ int main(int argc, char** argv) {
               "irregular:seed=1,n=4",
               "irregular:seed=7,n=6"};
 
-  std::printf(
-      "paper at dt = %g*sqrt(L/g) against adaptive (defaults), damping ratio %g, %d drops of seed %llu "
-      "per shape\n",
-      dt_factor, damping_ratio, drops, static_cast<unsigned long long>(seed));
+  const repose::SettleParams defaults;
+  if (tolerance == 0) tolerance = defaults.tolerance;
+  if (reference_tolerance > 0)
+    std::printf("adaptive at tolerance %g against adaptive at %g", reference_tolerance, tolerance);
+  else
+    std::printf("paper at dt = %g*sqrt(L/g) against adaptive at tolerance %g", dt_factor, tolerance);
+  std::printf(", damping ratio %g, %d drops of seed %llu per shape\n", damping_ratio, drops,
+              static_cast<unsigned long long>(seed));
   std::printf("%-34s %6s %9s %9s %11s %12s %9s %9s\n", "shape", "drops", "same face", "same pose",
               "time 1e-3", "worst dt/t", "paper s", "adapt s");
   int disagreements = 0;
@@ -86,14 +101,17 @@ int main(int argc, char** argv) {
     const repose::RestPoseCatalog catalog = repose::catalog_rest_poses(
         particle, repose::compute_rest_landscape(particle),
         repose::default_persistence(particle, repose::is_smooth_surface(particle)));
-    repose::SettleParams paper;
-    paper.integrator = repose::Integrator::paper;
-    paper.dt = dt_factor * std::sqrt(particle.length / paper.gravity);
+    repose::SettleParams
+        paper;  // the reference: the paper's scheme, or the adaptive one at a tight tolerance
+    paper.integrator = reference_tolerance > 0 ? repose::Integrator::adaptive : repose::Integrator::paper;
+    if (reference_tolerance > 0) paper.tolerance = reference_tolerance;
+    paper.dt = reference_tolerance > 0 ? 0 : dt_factor * std::sqrt(particle.length / paper.gravity);
     paper.damping =
         damping_ratio * particle.mass.mass * std::sqrt(paper.gravity * std::pow(particle.length, 3));
     repose::SettleParams adaptive = paper;
     adaptive.integrator = repose::Integrator::adaptive;
     adaptive.dt = 0;
+    adaptive.tolerance = tolerance;
     Comparison c;
     for (int i = 0; i < drops; ++i) {
       const repose::Quat q = repose::drop_orientation(seed, static_cast<std::uint64_t>(i));

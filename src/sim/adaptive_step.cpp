@@ -2,7 +2,10 @@
 // walks over the hull's edge graph instead of scans (docs/method.md, "No overlap, ever").
 #include <algorithm>
 #include <array>
+#include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
+#include <span>
+#include <utility>
 
 #include "settler.hpp"
 
@@ -47,9 +50,14 @@ double Settler::Impl::lowest_height() {
 // state there is only interpolated, with no contact decision) without changing the run.
 void Settler::Impl::rotate_adaptive() {
   if (restart) {
-    integrator->start(support, rot, t, std::min(dt, 1e-3 * std::sqrt(length / params.gravity)));
+    // From rest (the first contact, a tip off a balance) the first trial step is short; after an event the
+    // motion goes on at the pace the error control had reached, so it restarts from the proposed step (a
+    // too long one after an impact is rejected and shortened by the error control).
+    const double first = restart_step > 0 ? restart_step : 1e-3 * std::sqrt(length / params.gravity);
+    integrator->start(support, rot, t, std::min(dt, first));
     restart = false;
     in_step = false;
+    resume = false;
   }
   if (!in_step) begin_adaptive_step();
   const double end = std::min({step_end, max_time, limit});
@@ -62,7 +70,10 @@ void Settler::Impl::rotate_adaptive() {
   }
   in_step = false;
   band_entered = step_band_entered;
-  if (step_event) restart = true;
+  // After an event the rest of the integrator's step is still the motion, unless the update below changes
+  // the support (which restarts the integrator): the next step resumes there.
+  resume = step_event;
+  restart_step = integrator->proposed_step();
   rot = integrator->state_at(step_end);
   stalled_steps = step_end - step_start < 1e-9 * dt ? stalled_steps + 1 : 0;
   q = rot.q;
@@ -78,15 +89,30 @@ void Settler::Impl::rotate_adaptive() {
   const int vertex_before = support_vertex;
   const bool finishing_before = finishing;
   update_contacts(rot.omega, rot.omega.cross(com - support.world));
+  // A support chosen from several touching points by the impact law is chosen again at once with the motion
+  // it leaves: the choice the paper's fixed step makes one step later, here at dt → 0. (An impact can switch
+  // to a line whose motion then lets one of its points lift.)
+  for (int again = 0;
+       again < kRedecisions && !smooth && restart && status == Status::running && touching.size() >= 2;
+       ++again) {
+    restart = false;
+    update_contacts(rot.omega, rot.omega.cross(com - support.world));
+    if (!restart) {
+      restart = true;
+      break;
+    }
+  }
   decision_cached = keep && !restart && contact == decision_contact && touching == decision_touching &&
                     support_vertex == vertex_before && support.line == support_before.line &&
                     support.axis == support_before.axis && support.world == support_before.world &&
                     finishing == finishing_before;
 }
 
-// Takes one integrator step from t and finds its first event (step_end: the event, or the step's end).
+// Takes one integrator step from t, or resumes the last one after an event that changed no support, and
+// finds its first event (step_end: the event, or the step's end).
 void Settler::Impl::begin_adaptive_step() {
-  integrator->step();
+  if (!resume || integrator->time() <= t) integrator->step();
+  resume = false;
   in_step = true;
   step_start = t;
   const double t0 = t, t1 = integrator->time();
@@ -101,7 +127,8 @@ void Settler::Impl::begin_adaptive_step() {
     if (i > 0) arc += angle_bound(at[i - 1], at[i]);
   }
   // The chord sum under-estimates the arc by O(h²) of it: a factor 2 covers that with room.
-  const double swept = 2 * arc * reach_radius;
+  arc *= 2;
+  const double swept = arc * reach_radius;
   const double level = smooth ? 0.0 : band + touch_tol;
   // Candidates: the vertices within reach of an event at the start or at the end of the step, by two walks;
   // their start heights (the baseline of the pierce test) are refreshed.
@@ -118,33 +145,83 @@ void Settler::Impl::begin_adaptive_step() {
   for (int k : candidates) walk_member[k] = 0;
   const Vec3 r3 = at[0].toRotationMatrix().row(2).transpose();
   for (int k : candidates) z[k] = support.world.z() + r3.dot(particle.hull.vertices[k] - support.body);
+  // Of those, the vertices that can reach one of their own event levels: a vertex at distance r from the
+  // pivot moves by at most arc·r (the support itself never does). Most steps keep none and look no further.
+  std::vector<int>& reachable = walk_out;
+  reachable.clear();
+  for (int k : candidates) {
+    const double reach = arc * (particle.hull.vertices[k] - support.body).norm() + event_tol;
+    if (z[k] - reach < event_level(k) || z[k] + reach > rise_level(k)) reachable.push_back(k);
+  }
 
   bool pierced = false, entered = false;
   int first = -1;
-  for (int i = 1; i <= kEventSamples && first < 0; ++i)
-    if (adaptive_event_at(at[i], candidates, pierced, entered)) first = i;
+  if (!reachable.empty())
+    for (int i = 1; i <= kEventSamples && first < 0; ++i)
+      if (adaptive_event_at(at[i], reachable, pierced, entered)) first = i;
   step_end = t1;
   step_event = first > 0;
   step_band_entered = false;
   if (!step_event) {
-    locate_decision_change(t0, t1);
+    locate_decision_change(t0, t1, std::span(times).subspan(1, kEventSamples - 1));
     return;
   }
-  // Bisect the bracketing interval on the dense output (to 2^-48 of it), over the candidates within reach
-  // of an event inside that interval alone.
-  const double sub_swept = 2 * angle_bound(at[first - 1], at[first]) * reach_radius;
-  const Vec3 r3_lo = at[first - 1].toRotationMatrix().row(2).transpose();
-  const Vec3 r3_hi = at[first].toRotationMatrix().row(2).transpose();
-  std::vector<int>& near = walk_out;
+  const auto [lo, hi] = locate_event(times[first - 1], times[first], pierced, entered);
+  // As in the fixed step: just after a band event, just before a vertex reaches the wall. Only an entry
+  // counts as "a point entered the band" for the choice of support (a point that leaves it does not), and,
+  // as in the fixed step, not once the stability test has passed.
+  step_band_entered = !pierced && entered && !finishing;
+  step_end = pierced ? lo : hi;
+  locate_decision_change(t0, lo, std::span(times).subspan(1, first - 1));
+}
+
+// The first event in [lo, hi] (none at lo, one at hi) bracketed to 2^-44 of the step, over the vertices that
+// can reach an event level inside it: TOMS 748 (Alefeld, Potra and Shi; Boost.Math) on the smallest event
+// margin, which is continuous in time, with bisection of the event test as the fallback for a margin that
+// is exactly zero. `pierced` and `entered` are set to the event at the returned upper end.
+std::pair<double, double> Settler::Impl::locate_event(double lo, double hi, bool& pierced, bool& entered) {
+  const Quat q_lo = integrator->orientation_at(lo), q_hi = integrator->orientation_at(hi);
+  const double sub_swept = 2 * angle_bound(q_lo, q_hi);
+  const Vec3 r3_lo = q_lo.toRotationMatrix().row(2).transpose();
+  const Vec3 r3_hi = q_hi.toRotationMatrix().row(2).transpose();
+  std::vector<int>& near = walk_union;
   near.clear();
-  for (int k : candidates) {
+  for (int k : walk_out) {
     const Vec3 d = particle.hull.vertices[k] - support.body;
     const double z_lo = support.world.z() + r3_lo.dot(d), z_hi = support.world.z() + r3_hi.dot(d);
-    if (std::min(z_lo, z_hi) <= level + sub_swept + event_tol) near.push_back(k);
+    const double reach = sub_swept * d.norm() + event_tol;
+    if (std::min(z_lo, z_hi) - reach < event_level(k) || std::max(z_lo, z_hi) + reach > rise_level(k))
+      near.push_back(k);
   }
-  double lo = times[first - 1], hi = times[first];
+  const double resolution = (hi - lo) * 0x1p-41;  // the bracket is 1/8 of a step: 2^-44 of the step
+  auto margin = [&](double tt) { return event_margin(integrator->orientation_at(tt), near); };
+  const double m_lo = margin(lo), m_hi = margin(hi);
   bool hi_pierced = pierced, hi_entered = entered;
-  for (int i = 0; i < kBisections; ++i) {
+  if (m_lo > 0 && m_hi < 0) {
+    boost::uintmax_t iterations = kBisections;
+    const auto r = boost::math::tools::toms748_solve(
+        margin, lo, hi, m_lo, m_hi, [&](double a, double b) { return b - a <= resolution; }, iterations);
+    // The bracket is then snapped to the grid of cells `resolution` wide from lo, the cells bisection would
+    // end in: the result depends on the event test alone, not on the round-off of the margins (which differ
+    // with the particle's scale), so a run stays the same at any scale.
+    const double cell = std::floor((r.first - lo) / resolution);
+    double a = lo + cell * resolution, b = std::min(hi, a + resolution);
+    bool p = false, e = false;
+    for (int shift = 0; shift < 4 && a > lo && adaptive_event_at(integrator->orientation_at(a), near, p, e);
+         ++shift) {
+      b = a;
+      a = std::max(lo, a - resolution);
+    }
+    for (int shift = 0; shift < 4 && b < hi && !adaptive_event_at(integrator->orientation_at(b), near, p, e);
+         ++shift) {
+      a = b;
+      b = std::min(hi, b + resolution);
+    }
+    if (!adaptive_event_at(integrator->orientation_at(a), near, p, e) &&
+        adaptive_event_at(integrator->orientation_at(b), near, pierced, entered))
+      return {a, b};
+  }
+  for (int i = 0; i < kBisections && hi - lo > resolution; ++i) {
     const double mid = 0.5 * (lo + hi);
     if (adaptive_event_at(integrator->orientation_at(mid), near, pierced, entered)) {
       hi = mid;
@@ -154,11 +231,9 @@ void Settler::Impl::begin_adaptive_step() {
       lo = mid;
     }
   }
-  // As in the fixed step: just after a band event, just before a vertex reaches the wall. Only an entry
-  // counts as "a point entered the band" for the choice of support (a point that leaves it does not).
-  step_band_entered = !hi_pierced && hi_entered;
-  step_end = hi_pierced ? lo : hi;
-  locate_decision_change(t0, lo);
+  pierced = hi_pierced;
+  entered = hi_entered;
+  return {lo, hi};
 }
 
 // What the contact update decides from the pose for the current contact and touching sets: the contact type
@@ -191,17 +266,35 @@ Settler::Impl::Decision Settler::Impl::decision_at(const Quat& qq) {
 // If the contact decisions at `t_end` differ from those at the step's start `t0`, the step is cut just after
 // the first change (bisection on the dense output): the contact update then decides there, as the paper's
 // fixed step does at dt → 0.
-void Settler::Impl::locate_decision_change(double t0, double t_end) {
+void Settler::Impl::locate_decision_change(double t0, double t_end, std::span<const double> inner) {
   const Decision start = decision_cached ? cached_decision : decision_at(rot.q);
   decision_cached = false;
-  const Decision end = decision_at(integrator->orientation_at(t_end));
-  end_decision_known = !step_event && end == start;
-  if (end == start) {
-    cached_decision = end;
-    return;
-  }
+  // The step's inner sample instants first, so that a decision that changes and changes back within the
+  // step (the stability test passing for a moment) is still seen; then its end.
   double lo = t0, hi = t_end;
-  for (int i = 0; i < kBisections; ++i) {
+  bool changed = false;
+  for (std::size_t i = kDecisionStride - 1; i < inner.size(); i += kDecisionStride) {
+    const double ts = inner[i];
+    if (ts >= t_end) break;
+    if (decision_at(integrator->orientation_at(ts)) != start) {
+      hi = ts;
+      changed = true;
+      break;
+    }
+    lo = ts;
+  }
+  if (!changed) {
+    const Decision end = decision_at(integrator->orientation_at(t_end));
+    end_decision_known = !step_event && end == start;
+    if (end == start) {
+      cached_decision = end;
+      return;
+    }
+  } else {
+    end_decision_known = false;
+  }
+  const double resolution = (t_end - t0) * 0x1p-44;
+  for (int i = 0; i < kBisections && hi - lo > resolution; ++i) {
     const double mid = 0.5 * (lo + hi);
     if (decision_at(integrator->orientation_at(mid)) == start)
       lo = mid;
@@ -224,8 +317,21 @@ bool Settler::Impl::adaptive_event_at(const Quat& qq, const std::vector<int>& ca
     const double zk = support.world.z() + r3.dot(particle.hull.vertices[k] - support.body);
     pierced = pierced || pierces(k, zk);
     entered = entered || enters_band(k, zk);
-    left = left || leaves_band(k, zk);
+    left = left || rises(k, zk);
   }
   return pierced || entered || left;
+}
+
+// The smallest margin of the candidates to their events at orientation qq (length): negative once one has
+// passed below the wall or left the band, zero or negative once one has entered it; continuous in time.
+double Settler::Impl::event_margin(const Quat& qq, const std::vector<int>& candidates) const {
+  const Vec3 r3 = qq.toRotationMatrix().row(2).transpose();
+  double m = INFINITY;
+  for (int k : candidates) {
+    const double zk = support.world.z() + r3.dot(particle.hull.vertices[k] - support.body);
+    m = std::min({m, zk - pierce_level(k), rise_level(k) - zk});
+    if (band_events() && !in_contact[k]) m = std::min(m, zk - band);
+  }
+  return m;
 }
 }  // namespace repose

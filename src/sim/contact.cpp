@@ -10,9 +10,21 @@ LineFit fit_line(const std::vector<Vec3>& points) {
   if (points.empty()) return fit;
   for (const Vec3& p : points) fit.centroid += p;
   fit.centroid /= static_cast<double>(points.size());
-  Mat3 scatter = Mat3::Zero();
-  for (const Vec3& p : points) scatter += (p - fit.centroid) * (p - fit.centroid).transpose();
-  if (scatter.row(2).isZero(0.0)) {
+  // The six distinct sums of the symmetric scatter matrix (a full 3×3 outer product per point costs more,
+  // and the fit runs on every contact decision).
+  double xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
+  for (const Vec3& p : points) {
+    const Vec3 d = p - fit.centroid;
+    xx += d.x() * d.x();
+    xy += d.x() * d.y();
+    xz += d.x() * d.z();
+    yy += d.y() * d.y();
+    yz += d.y() * d.z();
+    zz += d.z() * d.z();
+  }
+  Mat3 scatter;
+  scatter << xx, xy, xz, xy, yy, yz, xz, yz, zz;
+  if (xz == 0 && yz == 0 && zz == 0) {
     // Points in a plane z = const (the engine fits footprints on the wall every step): the 2×2 problem has a
     // closed form, [a b; b c] with eigenvalues m ± r. The eigenvector of the larger one is taken from
     // whichever of its two expressions has the larger norm, so it stays accurate for any orientation.

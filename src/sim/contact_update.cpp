@@ -43,7 +43,10 @@ void Settler::Impl::update_contacts(const Vec3& omega, const Vec3& com_velocity,
   double lowest = INFINITY;
   for (int k : contact) {
     lowest = std::min(lowest, z[k]);
-    if (z[k] <= touch_tol) touching.push_back(k);
+    if (z[k] <= touch_tol) {
+      touching.push_back(k);
+      in_contact[k] = kTouchingPoint;
+    }
   }
   max_penetration = std::max(max_penetration, -lowest);
 

@@ -43,6 +43,7 @@ void Settler::Impl::begin_contact(const Vec3& com_velocity) {
   com = sim::com_position(support, q);
   rot = {q, Vec3::Zero(), Vec3::Zero()};
   restart = true;
+  restart_step = 0;
   update_contacts(Vec3::Zero(), com_velocity);
 }
 }  // namespace repose

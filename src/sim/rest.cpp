@@ -51,6 +51,7 @@ void Settler::Impl::tip_off_edge_balance(const Vec2& g) {
   com = sim::com_position(support, q);
   rot = {q, Vec3::Zero(), Vec3::Zero()};
   restart = true;
+  restart_step = 0;
   note_penetration();
   remember_axis(rot.omega);
 }

@@ -102,4 +102,8 @@ Quat RotationIntegrator::orientation_at(double t) const {
 
 double RotationIntegrator::time() const { return impl_->dense.current_time() * impl_->time_unit; }
 
+double RotationIntegrator::proposed_step() const {
+  return impl_->dense.current_time_step() * impl_->time_unit;
+}
+
 }  // namespace repose::sim

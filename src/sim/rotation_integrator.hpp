@@ -35,6 +35,8 @@ class RotationIntegrator {
   /// The orientation alone at a time of the last step's interval (cheaper: no ω).
   Quat orientation_at(double t) const;
   double time() const;  ///< the end of the last step (or the start time)
+  /// The size the error control proposes for the next step (time): a restart after an event starts there.
+  double proposed_step() const;
 
   using State = std::array<double, 7>;  ///< q (w, x, y, z), L / (m·L²/T)
 

@@ -12,6 +12,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <optional>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "contact.hpp"
@@ -39,6 +41,10 @@ struct Settler::Impl {
   // The adaptive step is searched for events at this many evenly spaced instants of its dense output, so a
   // vertex that dips below the wall and back up inside one step is still caught.
   static constexpr int kEventSamples = 8;
+  // Contact decisions are also checked at every kDecisionStride-th of those instants inside a step.
+  static constexpr std::size_t kDecisionStride = 4;
+  // A support chosen from several touching points is chosen again at once, at most this many times.
+  static constexpr int kRedecisions = 2;
 
   const Particle& particle;
   SettleParams params;
@@ -71,8 +77,10 @@ struct Settler::Impl {
   sim::Support support;
   sim::Rotation rot;
   int support_vertex = -1;
-  bool restart = true;   // adaptive: the support or the motion changed, so the integrator starts afresh
-  bool in_step = false;  // adaptive: inside an integrator step (stopped in it by advance_to())
+  bool restart = true;      // adaptive: the support or the motion changed, so the integrator starts afresh
+  bool in_step = false;     // adaptive: inside an integrator step (stopped in it by advance_to())
+  bool resume = false;      // adaptive: the next step resumes the integrator's last one (after an event)
+  double restart_step = 0;  // adaptive: the first trial step of a restart (0: from rest, a short one)
   double step_start = 0, step_end = 0;  // adaptive: the current step: its start, its first event or end
   bool step_event = false, step_band_entered = false;
   bool finishing = false;
@@ -91,7 +99,8 @@ struct Settler::Impl {
   std::vector<Vec3> footprints;       // scratch, their projections on the wall
   std::vector<double> next_z;         // scratch, heights at the end of a trial step
   std::vector<int> event_candidates;  // scratch, vertices that may cause an event within a step
-  std::vector<char> in_contact;
+  std::vector<char> in_contact;  // per hull vertex: 0, or in the contact set (1), or touching the wall (2)
+  static constexpr char kTouchingPoint = 2;
   // Adaptive integrator: vertex sets come from walks over the hull's edge graph (ConvexHull::neighbors), so
   // a step costs about the vertices near the wall, not the hull's size; `z` is then valid only for the
   // vertices of the last walk (the contact set, the last step's candidates).
@@ -131,21 +140,33 @@ struct Settler::Impl {
   // Whether vertex k, now at height zk, has (since the start of the step) passed below the wall, or entered
   // (left) the ε band. Below-the-wall is measured from where the vertex started, so a vertex that already
   // touches within round-off does not re-trigger at once.
-  bool pierces(std::size_t k, double zk) const {
-    return zk < std::max(std::min(z[k], 0.0), -100 * event_tol) - event_tol;
+  double pierce_level(std::size_t k) const {
+    return std::max(std::min(z[k], 0.0), -100 * event_tol) - event_tol;
   }
-  bool enters_band(std::size_t k, double zk) const {
-    return !smooth && !finishing && !in_contact[k] && zk <= band;
+  // Entering and leaving the ε band count as events (they change the contact set). The paper's scheme stops
+  // watching them once the stability test has passed; the adaptive one goes on, since the contact set still
+  // decides the type and a line's support while the particle turns onto its face.
+  bool band_events() const { return !smooth && (adaptive || !finishing); }
+  bool pierces(std::size_t k, double zk) const { return zk < pierce_level(k); }
+  bool enters_band(std::size_t k, double zk) const { return band_events() && !in_contact[k] && zk <= band; }
+  // The adaptive integrator's events upward: a contact leaving the ε band, a touching point lifting off the
+  // wall (either changes the sets the contact decisions are taken on).
+  double rise_level(std::size_t k) const {
+    if (adaptive && !smooth && in_contact[k] == kTouchingPoint) return touch_tol;
+    return band_events() && in_contact[k] ? band + touch_tol : INFINITY;
   }
-  bool leaves_band(std::size_t k, double zk) const {
-    return !smooth && !finishing && in_contact[k] && zk > band + touch_tol;
-  }
+  bool rises(std::size_t k, double zk) const { return zk > rise_level(k); }
+  // The lowest height vertex k may reach in a step without an event: the band for a vertex outside it, the
+  // pierce level otherwise.
+  double event_level(std::size_t k) const { return band_events() && !in_contact[k] ? band : pierce_level(k); }
   bool event_at(const Quat& qq, const std::vector<int>& candidates, bool& pierced) const;
   void rotate();
   void rotate_adaptive();
   void begin_adaptive_step();
   bool adaptive_event_at(const Quat& qq, const std::vector<int>& candidates, bool& pierced,
                          bool& entered) const;
+  double event_margin(const Quat& qq, const std::vector<int>& candidates) const;
+  std::pair<double, double> locate_event(double lo, double hi, bool& pierced, bool& entered);
   struct Decision {
     ContactType type = ContactType::point;
     bool hold = false, stable = false, line_holds = false;
@@ -156,7 +177,7 @@ struct Settler::Impl {
   bool decision_cached = false;     // (set when the last update changed nothing they depend on)
   bool end_decision_known = false;  // the last step ended without an event, its end decisions known
   std::vector<int> decision_contact, decision_touching;  // scratch: the sets before an update
-  void locate_decision_change(double t0, double t_end);
+  void locate_decision_change(double t0, double t_end, std::span<const double> inner);
 
   // ---- contacts, stability and supports (contact_update.cpp)
   void update_contacts(const Vec3& omega, const Vec3& com_velocity, bool heights_known = false);

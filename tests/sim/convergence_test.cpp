@@ -16,9 +16,27 @@
 namespace repose {
 namespace {
 
+// Whether drop `q` is ill-conditioned at `angle` (rad): a start turned by `angle` about ±x, ±y or ±z rests on
+// another face than `face`, or after a time more than 1e-3 (relative) away from `time`. Two faithful
+// integrations of such a drop may legitimately disagree by that much: on grains the time to rest jumps where
+// a contact decision flips (a point a hair inside or outside the touching tolerance when another point
+// reaches the band), as the rest face does at a balance.
+bool ill_conditioned(const Particle& particle, const SettleParams& params, const Quat& q, int face,
+                     double time, double angle) {
+  for (int axis = 0; axis < 3; ++axis)
+    for (double sign : {-1.0, 1.0}) {
+      const Quat turn(Eigen::AngleAxisd(sign * angle, Vec3::Unit(axis)));
+      const SettleResult r = settle(particle, params, (turn * q).normalized());
+      if (r.rest_face != face || std::abs(r.time - time) > 1e-3 * time) return true;
+    }
+  return false;
+}
+
 // Settles drops 0 .. n-1 of `seed` with both parameter sets (damping ratio 0.05 as `repose poses`; `vary`
 // turns the first set into the second) and checks that every drop rests on the same face after times within
-// `tolerance` of each other (relative). Prints the largest difference.
+// `tolerance` of each other (relative), unless the drop is ill-conditioned at 1e-6 rad (above: issue 12's
+// "within 1e-6 rad of a balance", for the time as for the face). Prints the largest difference and the drops
+// excused.
 void expect_same_runs(const char* spec, std::uint64_t seed, int n, double tolerance,
                       const std::function<void(SettleParams&, double tau)>& vary) {
   const Particle particle = load_particle(spec, 1000.0);
@@ -27,19 +45,26 @@ void expect_same_runs(const char* spec, std::uint64_t seed, int n, double tolera
   SettleParams b_params = a_params;
   vary(b_params, std::sqrt(particle.length / b_params.gravity));
   double worst = 0;
+  int excused = 0;
   for (int i = 0; i < n; ++i) {
     const Quat q = drop_orientation(seed, static_cast<std::uint64_t>(i));
     const SettleResult a = settle(particle, a_params, q);
     const SettleResult b = settle(particle, b_params, q);
     ASSERT_EQ(a.status, Status::rest) << spec << " drop " << i;
     ASSERT_EQ(b.status, Status::rest) << spec << " drop " << i;
-    EXPECT_EQ(a.rest_face, b.rest_face) << spec << " drop " << i << ": " << format_orientation(q);
-    if (a.rest_face != b.rest_face) continue;
     const double rel = std::abs(a.time - b.time) / b.time;
-    worst = std::max(worst, rel);
-    EXPECT_LT(rel, tolerance) << spec << " drop " << i << ": " << format_orientation(q);
+    if (a.rest_face == b.rest_face && rel < tolerance) {
+      worst = std::max(worst, rel);
+      continue;
+    }
+    const bool excuse = ill_conditioned(particle, a_params, q, a.rest_face, a.time, 1e-6);
+    excused += excuse;
+    EXPECT_TRUE(excuse) << spec << " drop " << i << " (" << format_orientation(q) << "): faces "
+                        << a.rest_face << ", " << b.rest_face << ", times " << a.time << ", " << b.time
+                        << ", well-conditioned at 1e-6 rad";
   }
-  std::printf("%s: largest relative difference of the time to rest %.3g\n", spec, worst);
+  std::printf("%s: largest relative difference of the time to rest %.3g; %d ill-conditioned drops excused\n",
+              spec, worst, excused);
 }
 
 // 20 drops of seed 1 per shape (uniform random orientations, from rest), damping ratio 0.05 as `repose
@@ -63,14 +88,27 @@ TEST(Convergence, AdaptiveAndSmallStepPaperSchemeAgreeDropByDrop) {
 // Every contact decision of the adaptive integrator is an event located on its dense output, so its result
 // cannot depend on how long its steps are allowed to be: the default longest step 0.05·τ and one 50× shorter
 // must give the same run. A decision taken only at step ends (not located) would make the time to rest move
-// by up to a step. 15 drops of seed 2 per shape, damping ratio 0.05. Measured: the same face everywhere, the
-// largest relative difference of the time to rest 9.6e-11; tolerance 1e-9. (Open, issue 12: on
-// `irregular:seed=3,n=3` one of these drops still ends on another face at the shorter step, a decision not
-// yet located; docs/performance.md.)
+// by up to a step: this test found three (a touching point lifting off, the contact set changing after the
+// stability test has passed, a support chosen from several touching points whose motion then lifts one of
+// them). 15 drops of seed 2 per shape, damping ratio 0.05. Measured: the same face everywhere, the largest
+// relative difference of the time to rest 6.3e-10 (the integrator's tolerance is 1e-9 per step); bound 1e-8.
+// One drop of the last grain is excused: it chatters between a point and a line support (a point entering
+// the band and leaving it again 0.3 µs later, every 2.5 ms) with the centre of mass nearly over the line,
+// until one run takes the line and the other does not; turned by 1e-6 rad it rests elsewhere.
 TEST(Convergence, TheAdaptiveRunDoesNotDependOnItsLongestStep) {
-  for (const char* spec :
-       {"box:x=1,y=2,z=3", "tetrahedron:edge=1", "irregular:seed=1,n=4", "irregular:seed=7,n=4"})
-    expect_same_runs(spec, 2, 15, 1e-9, [](SettleParams& p, double tau) { p.dt = 1e-3 * tau; });
+  for (const char* spec : {"box:x=1,y=2,z=3", "tetrahedron:edge=1", "irregular:seed=1,n=4",
+                           "irregular:seed=7,n=4", "irregular:seed=3,n=3"})
+    expect_same_runs(spec, 2, 15, 1e-8, [](SettleParams& p, double tau) { p.dt = 1e-3 * tau; });
+}
+
+// Nor on its tolerance, down to 1e-13: at the default 1e-9 the steps are placed elsewhere, so a contact
+// decision that is not located (the contact set changing once the stability test has passed, say) shows up
+// as a different time to rest. 20 drops of seed 1 of a grain whose drop 17 did so; damping ratio 0.05.
+// Measured: the largest relative difference of the time to rest 4.5e-8 (over 200 drops of this grain 1.2e-5:
+// the integration error grows near balances); bound 1e-3, issue 12's. Without the decision this drop's time
+// moves by 1.1e-2.
+TEST(Convergence, TheAdaptiveRunDoesNotDependOnItsTolerance) {
+  expect_same_runs("irregular:seed=7,n=6", 1, 20, 1e-3, [](SettleParams& p, double) { p.tolerance = 1e-13; });
 }
 
 }  // namespace

@@ -54,7 +54,8 @@ TEST_P(Damping, BoxLeavesItsEdgeBalanceAtTheDampedPendulumRate) {
   // decaying mode (rate −C/I − λ) has died, δ2/δ1 apart in amplitude: the first reaches every later state
   // ln(δ2/δ1)/λ after the second, with λ = (−C/I + sqrt((C/I)² + 4·m·g·d/I))/2. Both land on the 1 × 3 face.
   // Measured relative error of the time difference: paper 5.8e-8 (the trapezoidal rule's O(dt²) phase
-  // error), adaptive 2.8e-11 (its local error bound 1e-11); tolerances 5e-7 and 3e-10. A damping off by 1 %
+  // error), adaptive 2.8e-11 (its local error bound 1e-9, at steps of at most 0.05·τ); tolerances 5e-7 and
+  // 3e-10. A damping off by 1 %
   // moves λ by 0.45 %.
   const Particle& box = EdgePendulum::box();
   ASSERT_NEAR(box.mass.mass, EdgePendulum::m, 1e-12);

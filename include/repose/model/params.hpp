@@ -35,7 +35,7 @@ struct SettleParams {
   /// 0.05·sqrt(L/g) for adaptive.
   double dt = 0.0;
   /// adaptive: local error bound per step on the state scaled by L and sqrt(L/g) (absolute and relative).
-  double tolerance = 1e-11;
+  double tolerance = 1e-9;
   double contact_threshold = 0.05;  ///< ε as a fraction of L: points within ε·L of the wall are contacts
   /// Line vs surface (Algorithm 1): the contact set is a line when the residual sum of squares of its
   /// best-fit line is below this fraction of L². The paper's 0.1 (cm², for a particle of L ≈ 1 cm) is 0.1·L².
