@@ -1,5 +1,6 @@
 // The adaptive integrator's rotation steps: events located on the dense output, and the vertex sets found by
 // walks over the hull's edge graph instead of scans (docs/method.md, "No overlap, ever").
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
 #include <boost/math/tools/toms748_solve.hpp>
@@ -10,15 +11,6 @@
 #include "settler.hpp"
 
 namespace repose {
-
-namespace {
-// An upper bound of the rotation angle 2·acos(|a·b|) between two unit quaternions, without the acos: with
-// d = |a·b| in [0, 1], acos(d) / sqrt(2·(1 − d)) rises from 1 at d = 1 to (π/2)/√2 < 1.1108 at d = 0.
-double angle_bound(const Quat& a, const Quat& b) {
-  const double d = std::min(1.0, std::abs(a.dot(b)));
-  return 2 * 1.1108 * std::sqrt(2 * (1 - d));
-}
-}  // namespace
 
 // The hull vertices at most `level` above the wall at orientation `qq` about the current support, appended
 // to `out` (in index order if `sorted`: the order of a contact list matters to its fit's round-off and
@@ -45,6 +37,30 @@ double Settler::Impl::lowest_height() {
   return support.world.z() + r3.dot(particle.hull.vertices[lowest_vertex] - support.body);
 }
 
+// A bound of the angle the particle can turn in time h from now about the current support, from energy:
+// kinetic energy K grows at most by the potential energy the centre of mass loses, m·g·r_c per radian turned
+// (r_c: its distance from the pivot; damping only removes energy, impacts happen only at events), and
+// |ω| ≤ sqrt(2K / I_min) (I_min: the smallest moment of inertia about the support, or about a line's axis).
+// So dθ/dt ≤ sqrt(a + b·θ) with a = 2·K₀/I_min, b = 2·m·g·r_c/I_min, whence θ(h) ≤ sqrt(a)·h + b·h²/4.
+// K₀ carries a margin of 1e-9·m·g·L for the integrator's energy error.
+// The smallest moment of inertia about the current support (for a line, about its axis).
+double Settler::Impl::smallest_moment() const {
+  const Mat3 inertia = sim::support_inertia(body, support).inertia;  // body frame
+  if (support.line) {
+    const Vec3 e = q.conjugate() * support.axis;
+    return e.dot(inertia * e);
+  }
+  Eigen::SelfAdjointEigenSolver<Mat3> eigen;
+  eigen.computeDirect(inertia, Eigen::EigenvaluesOnly);
+  return eigen.eigenvalues()(0);
+}
+
+double Settler::Impl::arc_bound(double h) const {
+  const double k0 = kinetic_energy() + 1e-9 * body.mass * params.gravity * length;
+  const double b = 2 * body.mass * params.gravity * support.body.norm() / min_moment;
+  return std::sqrt(2 * k0 / min_moment) * h + 0.25 * b * h * h;
+}
+
 // One adaptive step, or the part of it before its first event, then the contact update at its end. The
 // step and its first event are found once, over the whole step, so advance_to() can stop inside it (the
 // state there is only interpolated, with no contact decision) without changing the run.
@@ -55,6 +71,7 @@ void Settler::Impl::rotate_adaptive() {
     // too long one after an impact is rejected and shortened by the error control).
     const double first = restart_step > 0 ? restart_step : 1e-3 * std::sqrt(length / params.gravity);
     integrator->start(support, rot, t, std::min(dt, first));
+    min_moment = smallest_moment();
     restart = false;
     in_step = false;
     resume = false;
@@ -116,49 +133,35 @@ void Settler::Impl::begin_adaptive_step() {
   in_step = true;
   step_start = t;
   const double t0 = t, t1 = integrator->time();
-  // The dense output at evenly spaced instants: the swept arc bounds which vertices can cause an event, and
-  // the first instant at which one holds brackets it.
-  std::array<Quat, kEventSamples + 1> at;
-  std::array<double, kEventSamples + 1> times;
-  double arc = 0;
-  for (int i = 0; i <= kEventSamples; ++i) {
-    times[i] = i == kEventSamples ? t1 : t0 + (t1 - t0) * i / kEventSamples;
-    at[i] = i == 0 ? rot.q : integrator->orientation_at(times[i]);
-    if (i > 0) arc += angle_bound(at[i - 1], at[i]);
-  }
-  // The chord sum under-estimates the arc by O(h²) of it: a factor 2 covers that with room.
-  arc *= 2;
-  const double swept = arc * reach_radius;
+  // The rotation angle the step can sweep, a bound from energy (arc_bound), bounds which vertices can cause
+  // an event: a vertex at distance r from the pivot moves by at most arc·r (the support itself never does).
+  const double arc = arc_bound(t1 - t0);
   const double level = smooth ? 0.0 : band + touch_tol;
-  // Candidates: the vertices within reach of an event at the start or at the end of the step, by two walks;
-  // their start heights (the baseline of the pierce test) are refreshed.
+  // Candidates: the vertices within reach of an event level from where they start, by a walk; their start
+  // heights (the baseline of the pierce test) are refreshed. Of those, the ones that can reach one of their
+  // own event levels are checked; most steps keep none and look no further.
   std::vector<int>& candidates = event_candidates;
   candidates.clear();
-  walk_union.clear();
-  vertices_below(at[0], level + swept + event_tol, walk_union, false);
-  vertices_below(at[kEventSamples], level + swept + event_tol, walk_union, false);
-  for (int k : walk_union)
-    if (!walk_member[k]) {
-      walk_member[k] = 1;
-      candidates.push_back(k);
-    }
-  for (int k : candidates) walk_member[k] = 0;
-  const Vec3 r3 = at[0].toRotationMatrix().row(2).transpose();
-  for (int k : candidates) z[k] = support.world.z() + r3.dot(particle.hull.vertices[k] - support.body);
-  // Of those, the vertices that can reach one of their own event levels: a vertex at distance r from the
-  // pivot moves by at most arc·r (the support itself never does). Most steps keep none and look no further.
+  vertices_below(rot.q, level + arc * reach_radius + event_tol, candidates, false);
+  const Vec3 r3 = rot.q.toRotationMatrix().row(2).transpose();
   std::vector<int>& reachable = walk_out;
   reachable.clear();
   for (int k : candidates) {
-    const double reach = arc * (particle.hull.vertices[k] - support.body).norm() + event_tol;
+    const Vec3 d = particle.hull.vertices[k] - support.body;
+    z[k] = support.world.z() + r3.dot(d);
+    const double reach = arc * d.norm() + event_tol;
     if (z[k] - reach < event_level(k) || z[k] + reach > rise_level(k)) reachable.push_back(k);
   }
-
+  // The dense output at evenly spaced instants: the first at which an event holds brackets it, so a vertex
+  // that dips below the wall and back up inside one step is still caught.
+  std::array<double, kEventSamples + 1> times;
+  for (int i = 0; i <= kEventSamples; ++i)
+    times[i] = i == kEventSamples ? t1 : t0 + (t1 - t0) * i / kEventSamples;
   bool pierced = false, entered = false;
   int first = -1;
   if (!reachable.empty())
     for (int i = 1; i <= kEventSamples && first < 0; ++i)
-      if (adaptive_event_at(at[i], reachable, pierced, entered)) first = i;
+      if (adaptive_event_at(integrator->orientation_at(times[i]), reachable, pierced, entered)) first = i;
   step_end = t1;
   step_event = first > 0;
   step_band_entered = false;
@@ -176,23 +179,11 @@ void Settler::Impl::begin_adaptive_step() {
 }
 
 // The first event in [lo, hi] (none at lo, one at hi) bracketed to 2^-44 of the step, over the vertices that
-// can reach an event level inside it: TOMS 748 (Alefeld, Potra and Shi; Boost.Math) on the smallest event
+// can reach an event level in the step: TOMS 748 (Alefeld, Potra and Shi; Boost.Math) on the smallest event
 // margin, which is continuous in time, with bisection of the event test as the fallback for a margin that
 // is exactly zero. `pierced` and `entered` are set to the event at the returned upper end.
 std::pair<double, double> Settler::Impl::locate_event(double lo, double hi, bool& pierced, bool& entered) {
-  const Quat q_lo = integrator->orientation_at(lo), q_hi = integrator->orientation_at(hi);
-  const double sub_swept = 2 * angle_bound(q_lo, q_hi);
-  const Vec3 r3_lo = q_lo.toRotationMatrix().row(2).transpose();
-  const Vec3 r3_hi = q_hi.toRotationMatrix().row(2).transpose();
-  std::vector<int>& near = walk_union;
-  near.clear();
-  for (int k : walk_out) {
-    const Vec3 d = particle.hull.vertices[k] - support.body;
-    const double z_lo = support.world.z() + r3_lo.dot(d), z_hi = support.world.z() + r3_hi.dot(d);
-    const double reach = sub_swept * d.norm() + event_tol;
-    if (std::min(z_lo, z_hi) - reach < event_level(k) || std::max(z_lo, z_hi) + reach > rise_level(k))
-      near.push_back(k);
-  }
+  const std::vector<int>& near = walk_out;        // the step's reachable vertices
   const double resolution = (hi - lo) * 0x1p-41;  // the bracket is 1/8 of a step: 2^-44 of the step
   auto margin = [&](double tt) { return event_margin(integrator->orientation_at(tt), near); };
   const double m_lo = margin(lo), m_hi = margin(hi);

@@ -61,6 +61,7 @@ struct Settler::Impl {
   std::optional<sim::RotationIntegrator> integrator;
   double hull_radius = 0;   // largest distance of a hull vertex from the centre of mass
   double reach_radius = 0;  // largest distance of a hull vertex from the current support
+  double min_moment = 1;    // adaptive: the smallest moment of inertia about the current support
 
   // Per-run state.
   double t = 0;
@@ -131,6 +132,8 @@ struct Settler::Impl {
   void heights(const Quat& qq, std::vector<double>& out) const;  // every hull vertex (contact_update.cpp)
   void vertices_below(const Quat& qq, double level, std::vector<int>& out, bool sorted);  // adaptive_step.cpp
   double lowest_height();                                                                 // adaptive_step.cpp
+  double smallest_moment() const;                                                         // adaptive_step.cpp
+  double arc_bound(double h) const;                                                       // adaptive_step.cpp
 
   // ---- free fall (fall.cpp)
   void fall_step();
