@@ -40,7 +40,7 @@ inline void add_physics_options(CLI::App& sub, PhysicsOptions& o, const std::str
       ->check(CLI::IsMember({"paper", "adaptive"}));
   sub.add_option("--dt", o.params.dt,
                  "paper: the time step; adaptive: the longest step (0 or unset: automatic, 1e-3*sqrt(L/g) "
-                 "for paper, 0.05*sqrt(L/g) for adaptive)");
+                 "for paper, 0.2*sqrt(L/g) for adaptive)");
   sub.add_option("--tolerance", o.params.tolerance,
                  "adaptive: local error bound per step, relative to L and sqrt(L/g) (default 1e-9)");
   sub.add_option("--contact-threshold", o.params.contact_threshold,

@@ -40,7 +40,7 @@ DropOutcome run_dynamic_drop(const Particle& particle, const RestLandscape& land
                              bool decide_early) {
   Settler settler(particle, params, start);
   const double weight = particle.mass.mass * params.gravity;
-  // Margin on the energy test: the engine's energy drift is < 1e-9·m·g·L at the default tolerance (the
+  // Margin on the energy test: the engine's energy drift is < 1e-8·m·g·L at the default tolerance (the
   // property sweep, tests/sim).
   const double margin = 1e-6 * particle.length;
   const double highest_barrier = highest_barrier_of(catalog);

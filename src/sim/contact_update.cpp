@@ -137,7 +137,7 @@ void Settler::Impl::choose_support(const sim::LineFit& fit, const Vec2& g, const
   };
 
   // Several points on the wall: the support that lets the others lift off (impact_support.hpp).
-  const sim::Impact impact{body, q, com, omega, com_velocity, length, touch_tol, dt};
+  const sim::Impact impact{body, q, com, omega, com_velocity, length, touch_tol, rebound_window};
   touches.clear();
   for (int k : touching) touches.push_back({k, world_vertex(k), particle.hull.vertices[k], z[k]});
   auto take = [&](const sim::SupportChoice& c) {

@@ -89,6 +89,9 @@ Settler::Impl::Impl(const Particle& p, const SettleParams& prm, const Quat& orie
   const double fall_time =
       (std::sqrt(params.drop_speed * params.drop_speed + 2 * params.gravity * params.drop_height)) /
       params.gravity;
+  // The impact rule's "pulled back within a tenth of a step" (impact_support.cpp) is on the paper's step; the
+  // adaptive integrator's steps have no fixed length, so it uses a fixed time scale, 0.05·τ, instead.
+  rebound_window = adaptive ? kReboundWindow * time_scale : dt;
   max_time = params.max_time > 0 ? params.max_time : 2000 * time_scale + fall_time;
   smooth =
       params.smooth == SmoothMode::on || (params.smooth == SmoothMode::automatic && is_smooth_surface(p));

@@ -37,7 +37,10 @@ struct Settler::Impl {
   static constexpr double kBalanceOffset = 1e-8;
   // The adaptive integrator's automatic longest step (× sqrt(L/g)): contact decisions (line support, the
   // paper's stability test, the balance check) are re-evaluated at the end of every step.
-  static constexpr double kAdaptiveMaxStep = 0.05;
+  static constexpr double kAdaptiveMaxStep = 0.2;
+  // The adaptive integrator's time scale for the impact rule's rebound test (× sqrt(L/g)), in place of a
+  // step.
+  static constexpr double kReboundWindow = 0.05;
   // The adaptive step is searched for events at this many evenly spaced instants of its dense output, so a
   // vertex that dips below the wall and back up inside one step is still caught.
   static constexpr int kEventSamples = 8;
@@ -55,6 +58,7 @@ struct Settler::Impl {
   double event_tol = 0;      // a vertex this far below the wall triggers a touch event
   double rss_threshold = 0;  // Algorithm 1 line/surface threshold (length²)
   double dt = 0;
+  double rebound_window = 0;  // the impact rule's step (impact_support.hpp): dt, or 0.05·τ (adaptive)
   double max_time = 0;
   bool smooth = false;
   bool adaptive = false;  // Integrator::adaptive

@@ -129,7 +129,7 @@ TEST(Ensemble, SmoothParticleEarlyDecisionMatchesFullSettle) {
 // direction d0 rolls to an x or y face are released from rest with the lowest point at a height that puts
 // the centre of mass 1e-8·L above sqrt(1.25) (its height above the lowest point is the box's support
 // function A|d0x| + B|d0y| + C|d0z|). During the fall the energy stays above that barrier (the engine's
-// drift is < 1e-9·m·g·L, tests/sim), so no decision may come before the touchdown: the run takes at least
+// drift is < 1e-8·m·g·L, tests/sim), so no decision may come before the touchdown: the run takes at least
 // the free-fall time sqrt(2·height/g) in steps of dt. It rests where the full run rests.
 TEST(Ensemble, EnergyAboveThePoseBarrierIsNotDecidedInTheAir) {
   const Study s("box:x=1,y=2,z=3");

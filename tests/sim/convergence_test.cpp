@@ -86,19 +86,20 @@ TEST(Convergence, AdaptiveAndSmallStepPaperSchemeAgreeDropByDrop) {
 }
 
 // Every contact decision of the adaptive integrator is an event located on its dense output, so its result
-// cannot depend on how long its steps are allowed to be: the default longest step 0.05·τ and one 50× shorter
+// cannot depend on how long its steps are allowed to be: the default longest step 0.2·τ and one 200× shorter
 // must give the same run. A decision taken only at step ends (not located) would make the time to rest move
 // by up to a step: this test found three (a touching point lifting off, the contact set changing after the
 // stability test has passed, a support chosen from several touching points whose motion then lifts one of
 // them). 15 drops of seed 2 per shape, damping ratio 0.05. Measured: the same face everywhere, the largest
-// relative difference of the time to rest 6.3e-10 (the integrator's tolerance is 1e-9 per step); bound 1e-8.
+// relative difference of the time to rest 8.9e-9 (the integrator's tolerance is 1e-9 per step, over ~50 steps
+// of the longer cap); bound 1e-7.
 // One drop of the last grain is excused: it chatters between a point and a line support (a point entering
 // the band and leaving it again 0.3 µs later, every 2.5 ms) with the centre of mass nearly over the line,
 // until one run takes the line and the other does not; turned by 1e-6 rad it rests elsewhere.
 TEST(Convergence, TheAdaptiveRunDoesNotDependOnItsLongestStep) {
   for (const char* spec : {"box:x=1,y=2,z=3", "tetrahedron:edge=1", "irregular:seed=1,n=4",
                            "irregular:seed=7,n=4", "irregular:seed=3,n=3"})
-    expect_same_runs(spec, 2, 15, 1e-8, [](SettleParams& p, double tau) { p.dt = 1e-3 * tau; });
+    expect_same_runs(spec, 2, 15, 1e-7, [](SettleParams& p, double tau) { p.dt = 1e-3 * tau; });
 }
 
 // Nor on its tolerance, down to 1e-13: at the default 1e-9 the steps are placed elsewhere, so a contact

@@ -24,7 +24,8 @@ TEST(FreeFall, ThrownDownItFollowsTheBallisticArcAndStartsWithHalfMVSquared) {
   p.drop_height = h;
   p.drop_speed = v;
   std::vector<Sample> samples;
-  const SettleResult r = settle(box, p, Quat::Identity(), [&](const Sample& s) { samples.push_back(s); });
+  const SettleResult r = settle(
+      box, p, Quat::Identity(), [&](const Sample& s) { samples.push_back(s); }, 1e-3);  // every ms
   const double e0 = 0.5 * m * v * v + m * kG * (h + 1.5);
   EXPECT_NEAR(r.energy_start, e0, 1e-12 * e0);
   ASSERT_FALSE(samples.empty());

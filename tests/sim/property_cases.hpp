@@ -234,13 +234,19 @@ struct Outcome {
 /// 1.1e-10 (m·g·L). The tolerances are 6× and 9× those; a damping moment of the wrong sign, an impact that
 /// keeps the normal velocity or a lift of the body by 1e-9·L would exceed them.
 /// The adaptive integrator's local error bound `tolerance` is on the state scaled by L and sqrt(L/g), in
-/// which kinetic energy is in units of m·g·L, so its energy error per step is of that order: measured at the
-/// default 1e-9 over the sweep, largest rise 8.0e-10; its allowance is 3× the tolerance (never below the
-/// paper scheme's).
+/// which kinetic energy is in units of m·g·L, so its energy error per step, and that of its dense output
+/// between steps, is of that order: measured at the default 1e-9 over the sweep, largest rise between samples
+/// 5.2e-9, largest overshoot over a run 4.0e-9 (m·g·L). Its allowances are 10× the tolerance (never below the
+/// paper scheme's); a damping moment of the wrong sign or an impact that keeps the normal velocity gives
+/// rises of 1e-3 and more.
 constexpr double kEnergyRise = 1e-10;
 constexpr double kEnergyOvershoot = 1e-9;
 inline double energy_rise_allowance(const SettleParams& prm) {
-  return prm.integrator == Integrator::adaptive ? std::max(kEnergyRise, 3 * prm.tolerance) : kEnergyRise;
+  return prm.integrator == Integrator::adaptive ? std::max(kEnergyRise, 10 * prm.tolerance) : kEnergyRise;
+}
+inline double energy_overshoot_allowance(const SettleParams& prm) {
+  return prm.integrator == Integrator::adaptive ? std::max(kEnergyOvershoot, 10 * prm.tolerance)
+                                                : kEnergyOvershoot;
 }
 
 /// Consecutive steps with no progress of time after which a run is declared stalled.
@@ -370,7 +376,7 @@ inline Outcome run_case(const Case& c, const Particle& p) {
       fail("free fall did not end at sqrt(2h/g) = " + num17(touch));
   }
 
-  if (o.energy_overshoot > kEnergyOvershoot)
+  if (o.energy_overshoot > energy_overshoot_allowance(prm))
     fail("energy rose " + num17(o.energy_overshoot) + " m·g·L above its start over the run");
 
   if (r.status == Status::rest) {

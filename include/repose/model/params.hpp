@@ -32,7 +32,7 @@ struct SettleParams {
   double damping = 0.0;   ///< C in Eq 4, torque per angular velocity (mass·length²/time)
   Integrator integrator = Integrator::adaptive;
   /// paper: the time step; adaptive: the longest step (time); 0 = automatic: 1e-3·sqrt(L/g) for paper,
-  /// 0.05·sqrt(L/g) for adaptive.
+  /// 0.2·sqrt(L/g) for adaptive.
   double dt = 0.0;
   /// adaptive: local error bound per step on the state scaled by L and sqrt(L/g) (absolute and relative).
   double tolerance = 1e-9;
