@@ -237,6 +237,14 @@ Settler::Impl::Decision Settler::Impl::decision_at(const Quat& qq) {
   const Vec3 com_now = com;
   q = qq;
   com = sim::com_position(support, q);
+  // Once the stability test has passed, band crossings are not events (on a fine mesh there are hundreds
+  // a drop, and only the decisions they change matter): the contact set is the one at this pose.
+  const bool own_set = band_crossings_in_decisions();
+  if (own_set) {
+    decision_set.clear();
+    vertices_below(qq, band + touch_tol, decision_set, true);
+    contact.swap(decision_set);
+  }
   contact_points.clear();
   footprints.clear();
   for (int k : contact) {
@@ -249,6 +257,7 @@ Settler::Impl::Decision Settler::Impl::decision_at(const Quat& qq) {
   d.hold = (!smooth || touching.size() >= 3) && touching_points_hold(g);
   d.stable = !smooth && !finishing && paper_stability_test(contact_points, g);
   d.line_holds = support.line && line_is_supported(support_vertex, support.axis);
+  if (own_set) contact.swap(decision_set);
   q = q_now;
   com = com_now;
   return d;

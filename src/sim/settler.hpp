@@ -150,10 +150,12 @@ struct Settler::Impl {
   double pierce_level(std::size_t k) const {
     return std::max(std::min(z[k], 0.0), -100 * event_tol) - event_tol;
   }
-  // Entering and leaving the ε band count as events (they change the contact set). The paper's scheme stops
-  // watching them once the stability test has passed; the adaptive one goes on, since the contact set still
-  // decides the type and a line's support while the particle turns onto its face.
-  bool band_events() const { return !smooth && (adaptive || !finishing); }
+  // Entering and leaving the ε band count as events (they change the contact set) until the stability test
+  // has passed. The contact set still decides the type and a line's support while the particle turns onto
+  // its face: the adaptive integrator then takes the crossings into its contact decisions instead
+  // (decision_at), so that they are located where they change a decision.
+  bool band_events() const { return !smooth && !finishing; }
+  bool band_crossings_in_decisions() const { return adaptive && !smooth && finishing; }
   bool pierces(std::size_t k, double zk) const { return zk < pierce_level(k); }
   bool enters_band(std::size_t k, double zk) const { return band_events() && !in_contact[k] && zk <= band; }
   // The adaptive integrator's events upward: a contact leaving the ε band, a touching point lifting off the
@@ -184,6 +186,7 @@ struct Settler::Impl {
   bool decision_cached = false;     // (set when the last update changed nothing they depend on)
   bool end_decision_known = false;  // the last step ended without an event, its end decisions known
   std::vector<int> decision_contact, decision_touching;  // scratch: the sets before an update
+  std::vector<int> decision_set;                         // scratch: the contact set at a decision's pose
   void locate_decision_change(double t0, double t_end, std::span<const double> inner);
 
   // ---- contacts, stability and supports (contact_update.cpp)
