@@ -45,26 +45,27 @@ DropOutcome run_dynamic_drop(const Particle& particle, const RestLandscape& land
   const double margin = 1e-6 * particle.length;
   const double highest_barrier = highest_barrier_of(catalog);
   DropOutcome out;
-  // The check rolls the landscape from the current direction, which costs about a step; every kCheckEvery
-  // steps it costs little and delays the decision by at most that many steps.
-  constexpr long kCheckEvery = 8;
-  for (long calls = 1; settler.step(); ++calls) {
-    if (!decide_early || calls % kCheckEvery != 0) continue;
+  // The check (a walk on the landscape from the current direction) costs less than a step now that a drop
+  // takes ~20 steps, so it is made before the first step (a drop released below the barrier of the pose it
+  // rolls into is decided at once) and after every step.
+  auto decided = [&] {
     const Sample sample = settler.sample();
     // The centre of mass is never below h(down) (no vertex below the wall), so this level bounds how high
     // on the COM-height landscape the particle can still climb.
     const double level = (sample.kinetic_energy + sample.potential_energy) / weight;
-    if (!(level < highest_barrier - margin)) continue;
+    if (!(level < highest_barrier - margin)) return false;
     const Vec3 down = sample.orientation.conjugate() * kDown;
     const int pose = catalog.face_pose[quasi_static_rest_face(particle, landscape, down)];
-    if (level < catalog.poses[pose].barrier - margin) {
-      out.pose = pose;
-      out.status = Status::rest;
-      out.decided_early = true;
-      out.steps = settler.result().steps;
-      return out;
-    }
-  }
+    if (!(level < catalog.poses[pose].barrier - margin)) return false;
+    out.pose = pose;
+    out.status = Status::rest;
+    out.decided_early = true;
+    out.steps = settler.result().steps;
+    return true;
+  };
+  if (decide_early && decided()) return out;
+  while (settler.step())
+    if (decide_early && decided()) return out;
   const SettleResult result = settler.result();
   out.status = result.status;
   out.steps = result.steps;
