@@ -100,6 +100,16 @@ void Settler::Impl::rotate_adaptive() {
   // The decisions found at this step's end hold at the next step's start if the update changes nothing they
   // depend on (the same contact and touching points, support and phase): then they are not recomputed.
   const bool keep = end_decision_known;
+  // A step without an event whose decisions did not change leaves the update nothing to decide while a
+  // single point touches: the contact and touching sets change only at events (after the stability test the
+  // contact set enters the decisions instead), the support the rules call for is the one they called for
+  // (choose_support), and neither a rest (the touching points do not hold the centre of mass) nor an edge
+  // balance (two touching points) can begin.
+  if (keep && !smooth && touching.size() <= 1 && !cached_decision.hold) {
+    quiet_update();
+    decision_cached = true;
+    return;
+  }
   decision_contact.assign(contact.begin(), contact.end());
   decision_touching.assign(touching.begin(), touching.end());
   const sim::Support support_before = support;

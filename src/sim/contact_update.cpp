@@ -80,6 +80,24 @@ void Settler::Impl::update_contacts(const Vec3& omega, const Vec3& com_velocity,
   if (adaptive) remember_axis(omega);
   choose_support(fit, g, omega, com_velocity);
   if (!smooth && kinetic_energy() < 1e-9 * body.mass * params.gravity * length) tip_off_edge_balance(g);
+  trace_update();
+}
+
+// After a step that changed nothing the update decides (adaptive_step.cpp): the heights of the contact
+// points, the penetration bookkeeping and the remembered axis move on, nothing else.
+void Settler::Impl::quiet_update() {
+  const Vec3 r3 = q.toRotationMatrix().row(2).transpose();
+  double lowest = INFINITY;
+  for (int k : contact) {
+    z[k] = support.world.z() + r3.dot(particle.hull.vertices[k] - support.body);
+    lowest = std::min(lowest, z[k]);
+  }
+  max_penetration = std::max(max_penetration, -lowest);
+  remember_axis(rot.omega);
+  trace_update();
+}
+
+void Settler::Impl::trace_update() const {
   if (trace)
     std::fprintf(stderr,
                  "t=%.9g type=%s contact=%zu touching=%zu finishing=%d support=%d line=%d axis=%g,%g,%g "

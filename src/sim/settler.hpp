@@ -191,6 +191,8 @@ struct Settler::Impl {
 
   // ---- contacts, stability and supports (contact_update.cpp)
   void update_contacts(const Vec3& omega, const Vec3& com_velocity, bool heights_known = false);
+  void quiet_update();
+  void trace_update() const;
   void set_type(ContactType new_type);
   bool paper_stability_test(const std::vector<Vec3>& contact_points, const Vec2& g) const;
   void choose_support(const sim::LineFit& fit, const Vec2& g, const Vec3& omega, const Vec3& com_velocity);
