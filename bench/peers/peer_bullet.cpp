@@ -26,6 +26,8 @@
 // Figures and discussion: docs/performance.md ("Against Bullet").
 #include <btBulletDynamicsCommon.h>
 
+#include "../bumpy_ellipsoid.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -66,33 +68,8 @@ struct Shape {
   std::string about;  // what it is
 };
 
-// A convex-ish grain of about 10,000 hull vertices: the shape library's irregular grains reach ~1,000 hull
-// vertices at 128,000 triangles (their hull vertex count grows only linearly with the icosphere frequency),
-// so this one is an ellipsoid (semi-axes 0.5, 0.4, 0.3 m, geodesic frequency 32: 10,242 vertices) with twelve
-// smooth random radial bumps of ±10 % (fixed seed): concave between bumps, so not "smooth", and several
-// distinct rest poses.
-repose::TriangleMesh bumpy_ellipsoid() {
-  repose::TriangleMesh mesh = repose::make_shape("ellipsoid:a=0.5,b=0.4,c=0.3,n=32");
-  std::mt19937_64 bits(12);
-  const auto uniform = [&] { return static_cast<double>(bits() >> 11) * 0x1.0p-53; };
-  std::vector<Vec3> centre;
-  std::vector<double> amplitude;
-  for (int k = 0; k < 12; ++k) {
-    const double z = 2 * uniform() - 1, phi = 2 * std::numbers::pi * uniform(), s = std::sqrt(1 - z * z);
-    centre.emplace_back(s * std::cos(phi), s * std::sin(phi), z);
-    amplitude.push_back(0.2 * uniform() - 0.1);
-  }
-  for (Vec3& v : mesh.vertices) {
-    const Vec3 u = v.normalized();
-    double scale = 1;
-    for (int k = 0; k < 12; ++k) scale += amplitude[k] * std::exp(-(1 - u.dot(centre[k])) / (0.3 * 0.3));
-    v *= scale;
-  }
-  return mesh;
-}
-
 repose::Particle make_shape_particle(const Shape& shape) {
-  if (shape.spec == "bumpy-ellipsoid") return repose::make_particle(bumpy_ellipsoid(), shape.spec, kDensity);
+  if (shape.spec == "bumpy-ellipsoid") return repose::make_particle(bumpy_ellipsoid(32), shape.spec, kDensity);
   return repose::load_particle(shape.spec, kDensity);
 }
 
