@@ -66,10 +66,11 @@ double Settler::Impl::arc_bound(double h) const {
 // state there is only interpolated, with no contact decision) without changing the run.
 void Settler::Impl::rotate_adaptive() {
   if (restart) {
-    // From rest (the first contact, a tip off a balance) the first trial step is short; after an event the
-    // motion goes on at the pace the error control had reached, so it restarts from the proposed step (a
-    // too long one after an impact is rejected and shortened by the error control).
-    const double first = restart_step > 0 ? restart_step : 1e-3 * std::sqrt(length / params.gravity);
+    // After an event the motion goes on at the pace the error control had reached, so it restarts from the
+    // proposed step; from rest (the first contact, a tip off a balance) it tries kFirstStep. Either, if too
+    // long, is rejected and shortened by the error control (measured: 1e-3·τ instead costs the cube 9 % more
+    // steps and the same result within the tolerance).
+    const double first = restart_step > 0 ? restart_step : kFirstStep * std::sqrt(length / params.gravity);
     integrator->start(support, rot, t, std::min(dt, first));
     min_moment = smallest_moment();
     restart = false;

@@ -38,6 +38,8 @@ struct Settler::Impl {
   // The adaptive integrator's automatic longest step (× sqrt(L/g)): contact decisions (line support, the
   // paper's stability test, the balance check) are re-evaluated at the end of every step.
   static constexpr double kAdaptiveMaxStep = 0.2;
+  // The adaptive integrator's first trial step from rest (× sqrt(L/g)).
+  static constexpr double kFirstStep = 0.05;
   // The adaptive integrator's time scale for the impact rule's rebound test (× sqrt(L/g)), in place of a
   // step.
   static constexpr double kReboundWindow = 0.05;
@@ -45,7 +47,7 @@ struct Settler::Impl {
   // vertex that dips below the wall and back up inside one step is still caught.
   static constexpr int kEventSamples = 8;
   // Contact decisions are also checked at every kDecisionStride-th of those instants inside a step.
-  static constexpr std::size_t kDecisionStride = 4;
+  static constexpr std::size_t kDecisionStride = 2;
   // A support chosen from several touching points is chosen again at once, at most this many times.
   static constexpr int kRedecisions = 2;
 
