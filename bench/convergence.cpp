@@ -45,8 +45,8 @@ bool differ(const repose::SettleResult& a, const repose::SettleResult& b) {
   return a.rest_face != b.rest_face || std::abs(a.time - b.time) > 1e-3 * a.time;
 }
 
-bool ill_conditioned(const repose::Particle& particle, const repose::SettleParams& params, const repose::Quat& q,
-                     const repose::SettleResult& at_q) {
+bool ill_conditioned(const repose::Particle& particle, const repose::SettleParams& params,
+                     const repose::Quat& q, const repose::SettleResult& at_q) {
   for (int axis = 0; axis < 3; ++axis)
     for (double sign : {-1.0, 1.0}) {
       const repose::Quat turn(Eigen::AngleAxisd(sign * 1e-6, repose::Vec3::Unit(axis)));
@@ -166,11 +166,14 @@ int main(int argc, char** argv) {
         c.reference_unconverged += !ill && unconverged;
         c.unexplained += !ill && !unconverged;
         std::printf(
-            "  drop %d: reference face %d t %.9g (%s; at a quarter of its step face %d t %.9g), adaptive face "
+            "  drop %d: reference face %d t %.9g (%s; at a quarter of its step face %d t %.9g), adaptive "
+            "face "
             "%d t %.9g (%s): %s: repose settle '%s' --orientation %s --density 1000 --damping %.17g\n",
             i, a.rest_face, a.time, repose::to_string(a.status), a4.rest_face, a4.time, b.rest_face, b.time,
             repose::to_string(b.status),
-            ill ? "ill-conditioned at 1e-6 rad" : unconverged ? "reference unconverged" : "UNEXPLAINED",
+            ill           ? "ill-conditioned at 1e-6 rad"
+            : unconverged ? "reference unconverged"
+                          : "UNEXPLAINED",
             spec.c_str(), repose::format_orientation(q).c_str(), paper.damping);
       }
     }

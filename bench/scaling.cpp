@@ -63,8 +63,9 @@ int main(int argc, char** argv) {
     long steps = 0;
     t0 = std::chrono::steady_clock::now();
     for (int i = 0; i < drops; ++i)
-      steps += repose::simulate_drop(particle, landscape, study.catalog, options, static_cast<std::uint64_t>(i))
-                   .steps;
+      steps +=
+          repose::simulate_drop(particle, landscape, study.catalog, options, static_cast<std::uint64_t>(i))
+              .steps;
     const double run = seconds_since(t0);
     std::printf("| %d | %zu | %zu | %.2f | %d | %.3f | %.0f |\n", f, mesh.triangles.size(),
                 particle.hull.vertices.size(), setup, drops, 1e3 * run / drops,

@@ -26,8 +26,6 @@
 // Figures and discussion: docs/performance.md ("Against Bullet").
 #include <btBulletDynamicsCommon.h>
 
-#include "../bumpy_ellipsoid.hpp"
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -49,6 +47,8 @@
 #include <string>
 #include <vector>
 
+#include "../bumpy_ellipsoid.hpp"
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -69,7 +69,8 @@ struct Shape {
 };
 
 repose::Particle make_shape_particle(const Shape& shape) {
-  if (shape.spec == "bumpy-ellipsoid") return repose::make_particle(bumpy_ellipsoid(32), shape.spec, kDensity);
+  if (shape.spec == "bumpy-ellipsoid")
+    return repose::make_particle(bumpy_ellipsoid(32), shape.spec, kDensity);
   return repose::load_particle(shape.spec, kDensity);
 }
 
