@@ -66,8 +66,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require(p.mesh.triangles.size() == mesh.triangles.size());
     // A solid's centre of mass (the body-frame origin) lies in its bounding box and inside its convex hull,
     // and the hull contains every vertex: no vertex further than round-off outside any hull face's plane.
-    // qhull places planes to ~1e-15 relative; 1e-9·D leaves room for its coplanar-facet merging.
-    const double tol = 1e-9 * sums.diagonal;
+    // qhull places planes to ~1e-15 relative; 1e-9·D leaves room for its coplanar-facet merging. A face
+    // through vertices only s apart (the mesh welds only below 1e-10·D) has its normal determined to ~ε·D/s
+    // only, so its plane can miss a vertex across the solid by ε·D²/s: found by the fuzzer, a vertex 1.2e-9·D
+    // outside a face through vertices 2e-9·D apart. The shortest edge bounds s from below.
+    double shortest = sums.diagonal;
+    for (const repose::Triangle& t : p.mesh.triangles)
+      for (int k = 0; k < 3; ++k)
+        shortest = std::min(shortest, (p.mesh.vertices[t[k]] - p.mesh.vertices[t[(k + 1) % 3]]).norm());
+    const double tol = std::max(1e-9 * sums.diagonal,
+                                4 * DBL_EPSILON * sums.diagonal * sums.diagonal / std::max(shortest, 1e-300));
     require((p.bounds.min.array() <= tol).all() && (p.bounds.max.array() >= -tol).all());
     for (const repose::HullFace& f : p.hull.faces) {
       require(f.normal.allFinite() && std::abs(f.normal.norm() - 1) < 1e-9 && f.offset >= -tol);
