@@ -102,7 +102,6 @@ Settler::Impl::Impl(const Particle& p, const SettleParams& prm, const Quat& orie
   z.resize(n);
   in_contact.resize(n);
   walk_visited.resize(n);
-  walk_member.resize(n);
   first_vertex_faces.resize(n);
   for (std::size_t f = 0; f < p.hull.faces.size(); ++f)
     first_vertex_faces[p.hull.faces[f].loop.front()].push_back(static_cast<int>(f));

@@ -111,9 +111,9 @@ struct Settler::Impl {
   // Adaptive integrator: vertex sets come from walks over the hull's edge graph (ConvexHull::neighbors), so
   // a step costs about the vertices near the wall, not the hull's size; `z` is then valid only for the
   // vertices of the last walk (the contact set, the last step's candidates).
-  std::vector<char> walk_visited, walk_member;  // scratch of hull size, all zero between uses
-  std::vector<int> walk_out, walk_union;        // scratch
-  int lowest_vertex = 0;                        // the lowest hull vertex at the last walk (its start)
+  std::vector<char> walk_visited;  // scratch of hull size, all zero between uses
+  std::vector<int> walk_out;       // scratch: a walk's vertices, then a step's reachable vertices
+  int lowest_vertex = 0;           // the lowest hull vertex at the last walk (its start)
   std::vector<std::vector<int>>
       first_vertex_faces;  // per hull vertex: the hull faces whose loop starts there
   std::vector<Phase> phases;
