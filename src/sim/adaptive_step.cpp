@@ -93,7 +93,6 @@ void Settler::Impl::rotate_adaptive() {
   resume = step_event;
   restart_step = integrator->proposed_step();
   rot = integrator->state_at(step_end);
-  stalled_steps = step_end - step_start < 1e-9 * dt ? stalled_steps + 1 : 0;
   q = rot.q;
   com = sim::com_position(support, q);
   t = step_end;

@@ -174,12 +174,11 @@ void Settler::Impl::choose_support(const sim::LineFit& fit, const Vec2& g, const
     next = c.support;
     next_vertex = c.vertex;
   };
-  const bool second_guess = stalled_steps < kStallLimit;
 
   if (smooth) {
     const sim::Touch current{support_vertex, world_vertex(support_vertex),
                              particle.hull.vertices[support_vertex], z[support_vertex]};
-    take(sim::choose_smooth(impact, touches, current, g, second_guess));
+    take(sim::choose_smooth(impact, touches, current, g));
   } else if (touching.size() <= 1) {
     // One point on the wall: the paper's kinematics from the contact set (Algorithm 1), a rotation about
     // the best-fit line for a line contact, about the previous axis for a surface contact.
@@ -203,7 +202,7 @@ void Settler::Impl::choose_support(const sim::LineFit& fit, const Vec2& g, const
       point_at(o);
     }
   } else {
-    take(sim::choose_from_touching(impact, touches, g, second_guess));
+    take(sim::choose_from_touching(impact, touches, g));
   }
 
   const bool same = next_vertex == support_vertex && next.line == support.line &&

@@ -69,8 +69,7 @@ bool others_separate(const Impact& impact, const std::vector<Touch>& touching, c
   return true;
 }
 
-SupportChoice choose_from_touching(const Impact& impact, const std::vector<Touch>& touching, const Vec2& g,
-                                   bool second_guess) {
+SupportChoice choose_from_touching(const Impact& impact, const std::vector<Touch>& touching, const Vec2& g) {
   const std::vector<Vec2> poly = touching_polygon(touching, impact.touch_tol);
   const ClosestFeature nearest = closest_feature(poly, g);
   std::vector<ClosestFeature> candidates = {nearest};
@@ -85,17 +84,15 @@ SupportChoice choose_from_touching(const Impact& impact, const std::vector<Touch
     edge.z() = 0;
     return line_support(a, edge);
   };
-  if (second_guess) {
-    for (const ClosestFeature& f : candidates) {
-      const SupportChoice c = make(f);
-      if (others_separate(impact, touching, c.support)) return c;
-    }
+  for (const ClosestFeature& f : candidates) {
+    const SupportChoice c = make(f);
+    if (others_separate(impact, touching, c.support)) return c;
   }
   return make(nearest.j >= 0 || n < 2 ? nearest : ClosestFeature{nearest.i, (nearest.i + 1) % n});
 }
 
 SupportChoice choose_smooth(const Impact& impact, const std::vector<Touch>& touching, const Touch& current,
-                            const Vec2& g, bool second_guess) {
+                            const Vec2& g) {
   const Touch* lowest = &current;
   double deepest = INFINITY;
   for (const Touch& t : touching)
@@ -105,7 +102,7 @@ SupportChoice choose_smooth(const Impact& impact, const std::vector<Touch>& touc
     }
   const SupportChoice c = point_support(*lowest);
   if (touching.size() >= 2 && !others_separate(impact, touching, c.support))
-    return choose_from_touching(impact, touching, g, second_guess);
+    return choose_from_touching(impact, touching, g);
   return c;
 }
 

@@ -49,16 +49,15 @@ bool others_separate(const Impact& impact, const std::vector<Touch>& touching, c
 
 /// Several points on the wall, centre of mass's projection `g`: the feature of their polygon nearest `g`,
 /// unless that would drive another touching point into the wall; then the first feature (edges in polygon
-/// order, then corners) that lets every other point separate; failing that, or with `second_guess` false
-/// (a run stalled on ever-shorter steps), the nearest edge, which keeps both its ends on the wall.
-SupportChoice choose_from_touching(const Impact& impact, const std::vector<Touch>& touching, const Vec2& g,
-                                   bool second_guess);
+/// order, then corners) that lets every other point separate; failing that, the nearest edge, which keeps
+/// both its ends on the wall.
+SupportChoice choose_from_touching(const Impact& impact, const std::vector<Touch>& touching, const Vec2& g);
 
 /// A smooth particle turns about its single lowest point: the lowest touching point other than the current
 /// support's vertex `current` (the most recent touch; of equal heights the first listed), else that vertex;
 /// if that would drive another touching point into the wall (rocking on an edge of the discretised surface),
 /// as choose_from_touching.
 SupportChoice choose_smooth(const Impact& impact, const std::vector<Touch>& touching, const Touch& current,
-                            const Vec2& g, bool second_guess);
+                            const Vec2& g);
 
 }  // namespace repose::sim

@@ -78,7 +78,6 @@ void Settler::Impl::rotate() {
     if (hi_pierced) iterations = lo_iterations;
   }
   if (iterations >= params.max_iterations) ++unconverged;
-  stalled_steps = taken < 1e-9 * dt ? stalled_steps + 1 : 0;
   const Vec3 omega_before = next.omega;
   rot = next;
   q = rot.q;

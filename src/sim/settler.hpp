@@ -27,8 +27,6 @@ namespace repose {
 
 struct Settler::Impl {
   static constexpr int kBisections = 48;  // locates an event to 2^-48 of a step: far below 1e-9·L of motion
-  // After this many near-empty steps, contact choices stop second-guessing.
-  static constexpr int kStallLimit = 20;
   // An edge balance (no motion, the centre of mass over the edge within 1e-9·L) is an unstable equilibrium,
   // not a rest: the particle is turned about the edge until its centre of mass is this far (× L) beyond it
   // and falls from there. Ten times the touching tolerance, so round-off never puts it back on the balance;
@@ -93,7 +91,6 @@ struct Settler::Impl {
   bool finishing = false;
   bool trace = std::getenv("REPOSE_TRACE") != nullptr;  // debugging aid: one line per step on stderr
   bool band_entered = true;  // a point entered the ε band in the last step (or contact just began)
-  int stalled_steps = 0;     // consecutive steps an event cut to (almost) nothing
   bool has_prev_axis = false;
   Vec3 prev_axis = Vec3::UnitX();
   ContactType type = ContactType::free_fall;

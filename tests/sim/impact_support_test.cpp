@@ -55,16 +55,11 @@ TEST(ImpactSupport, AFarSideEdgeIsChosenWhenTheNearestEdgeAndTheFirstEdgeWouldDr
   EXPECT_FALSE(others_separate(impact, touching, about_ab));
   EXPECT_TRUE(others_separate(impact, touching, about_bc));
 
-  const SupportChoice c = choose_from_touching(impact, touching, Vec2(com.x(), com.y()), true);
+  const SupportChoice c = choose_from_touching(impact, touching, Vec2(com.x(), com.y()));
   EXPECT_EQ(c.vertex, 11);
   EXPECT_TRUE(c.support.line);
   EXPECT_NEAR(std::abs(c.support.axis.dot(Vec3(-1, 1, 0).normalized())), 1.0, 1e-15);
   EXPECT_EQ(c.support.axis.z(), 0.0);
-  // A run stalled on ever-shorter steps stops second-guessing: the nearest edge, CA (through C).
-  const SupportChoice stalled = choose_from_touching(impact, touching, Vec2(com.x(), com.y()), false);
-  EXPECT_EQ(stalled.vertex, 12);
-  EXPECT_TRUE(stalled.support.line);
-  EXPECT_NEAR(std::abs(stalled.support.axis.y()), 1.0, 1e-15);
 }
 
 TEST(ImpactSupport, FromRestTheNearestFeatureLetsTheOthersLiftOff) {
@@ -76,16 +71,33 @@ TEST(ImpactSupport, FromRestTheNearestFeatureLetsTheOthersLiftOff) {
   const Impact impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3::Zero(), 1.0, 1e-9, 1e-6};
   const std::vector<Touch> touching = {touch(0, 0, 0, 0, com), touch(1, 2, 0, 0, com),
                                        touch(2, 0, 2, 0, com)};
-  const SupportChoice c = choose_from_touching(impact, touching, Vec2(com.x(), com.y()), true);
+  const SupportChoice c = choose_from_touching(impact, touching, Vec2(com.x(), com.y()));
   EXPECT_EQ(c.vertex, 1);
   EXPECT_FALSE(c.support.line);
   EXPECT_EQ(c.support.world, touching[1].world);
-  // Without second-guessing (a stalled run), the fallback keeps two points on the wall: from the nearest
-  // corner B, the polygon's next edge, B → C (both edges at B are at the corner's distance from G).
-  const SupportChoice stalled = choose_from_touching(impact, touching, Vec2(com.x(), com.y()), false);
-  EXPECT_EQ(stalled.vertex, 1);
-  EXPECT_TRUE(stalled.support.line);
-  EXPECT_NEAR(std::abs(stalled.support.axis.dot(Vec3(-1, 1, 0).normalized())), 1.0, 1e-15);
+}
+
+TEST(ImpactSupport, WhenNoFeatureLetsTheOthersLiftTheNearestEdgeKeepsTwoPointsOnTheWall) {
+  // From rest with the centre of mass G = (0.5, 0.6, 1) inside the triangle A (0, 0), B (2, 0), C (0, 2),
+  // every feature drives a point down (file comment, v = (0, 0, −1), D ∝ r_xy): about an edge the third
+  // vertex is on G's side, so it turns down with G; about a corner P, −D·(T − P) < 0 for both other
+  // vertices (about A: −(0.5, 0.6)·(2, 0) = −1 and −(0.5, 0.6)·(0, 2) = −1.2; B and C likewise). The fallback
+  // is the edge nearest G: CA (distance 0.5; AB is 0.6, BC |0.5 + 0.6 − 2|/√2 = 0.64), along y.
+  const Body body = test_body();
+  const Vec3 com(0.5, 0.6, 1);
+  const Impact impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3::Zero(), 1.0, 1e-9, 1e-6};
+  const std::vector<Touch> touching = {touch(0, 0, 0, 0, com), touch(1, 2, 0, 0, com),
+                                       touch(2, 0, 2, 0, com)};
+  for (const Touch& p : touching) EXPECT_FALSE(others_separate(impact, touching, Support{p.world, p.body}));
+  EXPECT_FALSE(others_separate(impact, touching, Support{touching[0].world, touching[0].body, true, Vec3(1, 0, 0)}));
+  EXPECT_FALSE(others_separate(impact, touching, Support{touching[0].world, touching[0].body, true, Vec3(0, 1, 0)}));
+  EXPECT_FALSE(others_separate(impact, touching,
+                               Support{touching[1].world, touching[1].body, true, Vec3(-1, 1, 0).normalized()}));
+  const SupportChoice c = choose_from_touching(impact, touching, Vec2(com.x(), com.y()));
+  EXPECT_TRUE(c.vertex == 0 || c.vertex == 2) << c.vertex;
+  EXPECT_TRUE(c.support.line);
+  EXPECT_NEAR(std::abs(c.support.axis.y()), 1.0, 1e-15);
+  EXPECT_EQ(c.support.axis.z(), 0.0);
 }
 
 TEST(ImpactSupport, ASmoothParticlePivotsOnItsLowestNewTouch) {
@@ -100,7 +112,7 @@ TEST(ImpactSupport, ASmoothParticlePivotsOnItsLowestNewTouch) {
   const Impact impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3(-2, -2, -1), 1.0, 1e-9, 1e-6};
   const Touch current = touch(5, 0, 1, 0, com);
   const std::vector<Touch> touching = {current, touch(6, 0, 0, -2e-12, com), touch(7, 1, 0, -1e-12, com)};
-  const SupportChoice c = choose_smooth(impact, touching, current, Vec2(com.x(), com.y()), true);
+  const SupportChoice c = choose_smooth(impact, touching, current, Vec2(com.x(), com.y()));
   EXPECT_EQ(c.vertex, 6);
   EXPECT_FALSE(c.support.line);
   Support about_b{touching[2].world, touching[2].body, false, Vec3::UnitX()};
@@ -108,11 +120,11 @@ TEST(ImpactSupport, ASmoothParticlePivotsOnItsLowestNewTouch) {
   // Two new touches at exactly the same height: the first listed is "the lowest" (the engine lists touching
   // points by vertex index, so the choice is deterministic).
   const std::vector<Touch> tie = {current, touch(6, 0, 0, -2e-12, com), touch(7, 1, 0, -2e-12, com)};
-  const SupportChoice first = choose_smooth(impact, tie, current, Vec2(com.x(), com.y()), true);
+  const SupportChoice first = choose_smooth(impact, tie, current, Vec2(com.x(), com.y()));
   EXPECT_EQ(first.vertex, 6);
   EXPECT_FALSE(first.support.line);  // A alone (B would fail, and the fallback hinges on the edge AB)
   // Alone on the wall, the current support stays the pivot.
-  const SupportChoice alone = choose_smooth(impact, {current}, current, Vec2(com.x(), com.y()), true);
+  const SupportChoice alone = choose_smooth(impact, {current}, current, Vec2(com.x(), com.y()));
   EXPECT_EQ(alone.vertex, 5);
   EXPECT_FALSE(alone.support.line);
 }
