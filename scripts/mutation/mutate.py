@@ -7,6 +7,11 @@ working tree is never modified and can be edited while a run goes on. Results ar
 BUILD/results.jsonl as they come, so a stopped run resumes where it was; the Markdown table is written at the
 end (and with --report alone).
 
+A survivor is then run against the pinned hash of the engine's output (60 drops of 8 shapes, both
+integrators, every bit of every result): "same results" means the mutant changed no bit of them, the
+evidence for classifying it as equivalent in what it computes (a cost, a bound that is never tight, a
+guide whose answer is verified); "results change" means a test is missing.
+
 A mutant whose object file is byte-identical to the original's is equivalent by construction (trivial
 compiler equivalence) and is not tested. A mutant that does not compile is "stillborn" and not counted. A
 test that runs longer than max(60 s, 5 x its time on the unmutated code) kills the mutant ("timeout"):
@@ -31,6 +36,7 @@ from operators import OPERATORS  # noqa: E402
 ROOT = Path(__file__).resolve().parents[2]
 # Never run: the pinned hash of the engine's output fails on any change, right or wrong; the package tests
 # install and build a consumer (minutes, and they test packaging, not results).
+PINNED_HASH = "Determinism.FixedBatchHashesToTheGoldenValue"
 DEFAULT_EXCLUDE = r"^Determinism\.FixedBatchHashesToTheGoldenValue$|^package\."
 SKIP_LINE = re.compile(r"^\s*(#|//)|\bthrow\b|\bError\(|fprintf|std::cout|std::cerr|static_assert|\btrace\b")
 
@@ -170,6 +176,14 @@ def list_tests(build_dir, exclude):
     return tests
 
 
+def results_same(build_dir):
+    """Whether the pinned hash of the engine's output (PINNED_HASH) still holds: the mutant changed no bit of
+    the results of that batch."""
+    [test] = [t for t in list_tests(build_dir, r"(?!)") if t["name"] == PINNED_HASH]
+    return subprocess.run(test["command"], cwd=test["cwd"], env=test["env"], stdout=subprocess.DEVNULL,
+                          stderr=subprocess.DEVNULL, timeout=600).returncode == 0
+
+
 def run_tests(tests, order, timeouts, jobs, stop_on_failure=True):
     """Runs the tests in `order`, `jobs` at a time. Returns (first failing test or None, how it failed,
     {name: seconds})."""
@@ -252,6 +266,8 @@ def write_report(results, path, command):
                    "same-object": "equivalent: same object code"}.get(r["outcome"], "")
         if r["outcome"] == "survived":
             outcome = f"equivalent: {equivalents[r['key']]}" if r["key"] in equivalents else "**survived**"
+            if "results_same" in r:
+                outcome += " (pinned batch: " + ("same results" if r["results_same"] else "results change") + ")"
         change = f"`{r['original']}` → `{r['mutated']}`".replace("|", "\\|")
         lines.append(f"| {r['key']} | {r['file']}:{r['line']} | {r['operator']} | {change} | {outcome} |")
     Path(path).write_text("\n".join(lines) + "\n")
@@ -291,6 +307,8 @@ def main():
     ap.add_argument("--fresh", action="store_true", help="forget earlier results")
     ap.add_argument("--retest", default="",
                     help="comma-separated outcomes to run again (e.g. survived,timeout after adding tests)")
+    ap.add_argument("--check-survivors", action="store_true",
+                    help="run the pinned hash on every survivor that has not had it (results_same)")
     ap.add_argument("--out", default=None, help="Markdown table (default BUILD/report.md)")
     ap.add_argument("--commit", default=None, help="mutate this commit's tree (default: the working tree)")
     args = ap.parse_args()
@@ -369,7 +387,21 @@ def main():
     results_file = open(results_path, "a")
     try:
         for i, m in enumerate(mutants):
-            if m["key"] in done:
+            if m["key"] in done and not (args.check_survivors and done[m["key"]]["outcome"] == "survived"
+                                         and "results_same" not in done[m["key"]]):
+                continue
+            if m["key"] in done:  # --check-survivors: the pinned hash only
+                lines = originals[m["file"]].split("\n")
+                lines[m["line"] - 1] = m["text"]
+                (tree / m["file"]).write_text("\n".join(lines))
+                record = dict(done[m["key"]])
+                record["results_same"] = build(build_dir, work / "mutant-build.log") and results_same(build_dir)
+                (tree / m["file"]).write_text(originals[m["file"]])
+                results_file.write(json.dumps(record) + "\n")
+                results_file.flush()
+                done[m["key"]] = record
+                print(f"[{i + 1}/{len(mutants)}] {m['file']}:{m['line']} {m['operator']}: pinned batch "
+                      f"{'same results' if record['results_same'] else 'results change'}", flush=True)
                 continue
             lines = originals[m["file"]].split("\n")
             lines[m["line"] - 1] = m["text"]
@@ -390,6 +422,8 @@ def main():
                     if killer:
                         record["killer"] = killer
                         kills[killer] = kills.get(killer, 0) + 1
+                    else:
+                        record["results_same"] = results_same(build_dir)
             (tree / m["file"]).write_text(originals[m["file"]])  # one bug at a time: put the file back
             record["seconds"] = round(time.monotonic() - t0, 1)
             results_file.write(json.dumps(record) + "\n")

@@ -4,9 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <repose/error.hpp>
 #include <repose/model/orientation.hpp>
 #include <repose/model/particle.hpp>
+#include <repose/sim/settle.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -99,6 +101,64 @@ TEST(ParticleValidation, ADensityThatIsNotFinitePositiveIsRefusedNamingThePartic
                 "box:x=1,y=1,z=1: density must be a finite positive number, got " + shown);
     }
   }
+}
+
+// An n-gonal bipyramid (equator radius r at z = 0, apexes at ±h), outward wound. Its face normals are
+// (h·cos φ, h·sin φ, ±a), a = r·cos(π/n) the equator's apothem, φ the face's mid azimuth. So neighbouring
+// upper faces meet at acos((h²·cos(2π/n) + a²)/(h² + a²)) and an upper and a lower face at the equator at
+// 2·atan(a/h); every edge is convex.
+TriangleMesh bipyramid(int n, double r, double h) {
+  TriangleMesh m;
+  for (int i = 0; i < n; ++i) {
+    const double theta = 2 * std::numbers::pi * i / n;
+    m.vertices.emplace_back(r * std::cos(theta), r * std::sin(theta), 0.0);
+  }
+  m.vertices.emplace_back(0, 0, h);
+  m.vertices.emplace_back(0, 0, -h);
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    m.triangles.push_back({i, j, n});
+    m.triangles.push_back({j, i, n + 1});
+  }
+  return m;
+}
+
+// SmoothMode::automatic treats a particle as smooth when its mesh is convex and neighbouring triangles meet
+// at less than 30° (docs/method.md). 24-gonal bipyramids whose equator angle (the largest; the lateral ones
+// are below 2π/24 = 15°) is 28° and 32°: the first is smooth, the second not. The angle itself is the closed
+// form of the bipyramid comment, to round-off (1e-12 rad).
+TEST(SmoothSurface, ThirtyDegreesBetweenNeighbouringTrianglesIsTheLimit) {
+  const int n = 24;
+  const double a = std::cos(std::numbers::pi / n);  // r = 1
+  for (const double degrees : {28.0, 32.0}) {
+    const double equator = degrees * std::numbers::pi / 180;
+    const double h = a / std::tan(equator / 2);
+    const double lateral = std::acos((h * h * std::cos(2 * std::numbers::pi / n) + a * a) / (h * h + a * a));
+    ASSERT_LT(lateral, equator);
+    const Particle p = make_particle(bipyramid(n, 1.0, h), "bipyramid", 1.0);
+    EXPECT_NEAR(p.max_dihedral_angle, equator, 1e-12) << degrees;
+    EXPECT_TRUE(p.convex_surface) << degrees;
+    EXPECT_EQ(is_smooth_surface(p), degrees < 30) << degrees;
+  }
+  // A reflex edge makes any mesh non-smooth: a box with a notch (an L-prism) is not convex.
+  TriangleMesh notch;
+  // L-shaped prism, extruded along z from the polygon (0,0) (2,0) (2,1) (1,1) (1,2) (0,2).
+  const double xy[6][2] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+  for (const double z : {0.0, 1.0})
+    for (const auto& v : xy) notch.vertices.emplace_back(v[0], v[1], z);
+  const std::vector<Triangle> caps = {{0, 2, 1}, {0, 3, 2}, {0, 5, 3}, {3, 5, 4}};
+  for (const Triangle& t : caps) {
+    notch.triangles.push_back(t);                               // bottom, facing −z
+    notch.triangles.push_back({t[0] + 6, t[2] + 6, t[1] + 6});  // top, facing +z
+  }
+  for (int i = 0; i < 6; ++i) {
+    const int j = (i + 1) % 6;
+    notch.triangles.push_back({i, j, j + 6});
+    notch.triangles.push_back({i, j + 6, i + 6});
+  }
+  const Particle l_prism = make_particle(notch, "l-prism", 1.0);
+  EXPECT_FALSE(l_prism.convex_surface);
+  EXPECT_FALSE(is_smooth_surface(l_prism));
 }
 
 // Found by fuzz_mesh_off / fuzz_mesh_ply: a cube whose vertices were moved until its faces pass through each

@@ -89,10 +89,12 @@ TEST(ImpactSupport, WhenNoFeatureLetsTheOthersLiftTheNearestEdgeKeepsTwoPointsOn
   const std::vector<Touch> touching = {touch(0, 0, 0, 0, com), touch(1, 2, 0, 0, com),
                                        touch(2, 0, 2, 0, com)};
   for (const Touch& p : touching) EXPECT_FALSE(others_separate(impact, touching, Support{p.world, p.body}));
-  EXPECT_FALSE(others_separate(impact, touching, Support{touching[0].world, touching[0].body, true, Vec3(1, 0, 0)}));
-  EXPECT_FALSE(others_separate(impact, touching, Support{touching[0].world, touching[0].body, true, Vec3(0, 1, 0)}));
-  EXPECT_FALSE(others_separate(impact, touching,
-                               Support{touching[1].world, touching[1].body, true, Vec3(-1, 1, 0).normalized()}));
+  EXPECT_FALSE(
+      others_separate(impact, touching, Support{touching[0].world, touching[0].body, true, Vec3(1, 0, 0)}));
+  EXPECT_FALSE(
+      others_separate(impact, touching, Support{touching[0].world, touching[0].body, true, Vec3(0, 1, 0)}));
+  EXPECT_FALSE(others_separate(
+      impact, touching, Support{touching[1].world, touching[1].body, true, Vec3(-1, 1, 0).normalized()}));
   const SupportChoice c = choose_from_touching(impact, touching, Vec2(com.x(), com.y()));
   EXPECT_TRUE(c.vertex == 0 || c.vertex == 2) << c.vertex;
   EXPECT_TRUE(c.support.line);
