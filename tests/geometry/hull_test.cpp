@@ -259,9 +259,10 @@ TEST(ConvexHull, RejectsDegenerateInput) {
   for (int i = 0; i < 5; ++i) {
     for (int j = 0; j < 5; ++j) planar.emplace_back(i, j, 0.5 * i - 0.25 * j);
   }
-  expect_error(planar, "coplanar points", "degenerate");
+  // qhull's own diagnostic (its first line, with its QH code) follows, so a user can look it up.
+  expect_error(planar, "coplanar points", "degenerate input (all points coplanar or collinear): QH");
   expect_error({Vec3(0, 0, 0), Vec3(1, 1, 1), Vec3(2, 2, 2), Vec3(3, 3, 3), Vec3(4, 4, 4)},
-               "collinear points", "degenerate");
+               "collinear points", "degenerate input (all points coplanar or collinear): QH");
   expect_error(std::vector<Vec3>(6, Vec3(1, 2, 3)), "identical points", "degenerate");
   expect_error({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, NAN)}, "NaN");
 }
