@@ -102,6 +102,32 @@ TEST(ImpactSupport, WhenNoFeatureLetsTheOthersLiftTheNearestEdgeKeepsTwoPointsOn
   EXPECT_EQ(c.support.axis.z(), 0.0);
 }
 
+TEST(ImpactSupport, APointRisingSlowerThanTheVelocityToleranceOrPulledBackAtOnceDoesNotSeparate) {
+  // A hinge along x through P = (0, 0, 0); the other touching point T = (0, 1, 0); centre of mass
+  // G = (0, 0.5, 1), no translation, spin w about x before. By hand (file comment, isotropic k = 0.1, m = 1):
+  // ℓ = k·w, I about the hinge = k + m·(0.5² + 1²) = 1.35, so ω = (k·w/1.35, 0, 0) and T rises at
+  // v_z = ω_x·1; gravity's moment about x is (G − P) × (0, 0, −m·g) = −0.5·m·g, so T is pulled down at
+  // a_z = −0.5·g/1.35 (no centripetal part: T − P is horizontal). The rule (impact_support.hpp): a point
+  // rising at ≤ 1e-9·sqrt(g·L) with a_z < −1e-9·g does not separate; nor does one that a_z brings back
+  // within a tenth of the window dt (2·v_z/(−a_z) < 0.1·dt).
+  const Body body = test_body();
+  const Vec3 com(0, 0.5, 1);
+  const Touch p = touch(0, 0, 0, 0, com), t = touch(1, 0, 1, 0, com);
+  const Support hinge{p.world, p.body, true, Vec3(1, 0, 0)};
+  const double g = body.gravity, a_z = -0.5 * g / 1.35;
+  auto separates = [&](double v_z, double dt) {
+    const Vec3 spin(1.35 * v_z / 0.1, 0, 0);
+    const Impact impact{body, Quat::Identity(), com, spin, Vec3::Zero(), 1.0, 1e-9, dt};
+    return others_separate(impact, {p, t}, hinge);
+  };
+  const double slow = 1e-7 * std::sqrt(g);   // 100× the velocity tolerance
+  const double back = 2 * slow / -a_z;       // 1.7e-7 s until T is back on the wall
+  EXPECT_TRUE(separates(slow, 5 * back));    // a tenth of the window is 0.5·back: it stays up longer
+  EXPECT_FALSE(separates(slow, 20 * back));  // pulled back within 2·back, a tenth of this window
+  EXPECT_FALSE(separates(1e-10 * std::sqrt(g), 1e-15));  // below the velocity tolerance, a_z down
+  EXPECT_FALSE(separates(-slow, 1e-15));                 // moving down
+}
+
 TEST(ImpactSupport, ASmoothParticlePivotsOnItsLowestNewTouch) {
   // Current support C0 (0, 1) and two new touches, A (0, 0) 2e-12 below the wall and
   // B (1, 0) 1e-12 below: the pivot is the lowest, A, listed between the others so that list order cannot
