@@ -387,10 +387,13 @@ def main():
     results_file = open(results_path, "a")
     try:
         for i, m in enumerate(mutants):
-            if m["key"] in done and not (args.check_survivors and done[m["key"]]["outcome"] == "survived"
-                                         and "results_same" not in done[m["key"]]):
+            if args.check_survivors:  # the pinned hash of the survivors so far, nothing else
+                if m["key"] not in done or done[m["key"]]["outcome"] != "survived" or \
+                        "results_same" in done[m["key"]]:
+                    continue
+            elif m["key"] in done:
                 continue
-            if m["key"] in done:  # --check-survivors: the pinned hash only
+            if args.check_survivors:
                 lines = originals[m["file"]].split("\n")
                 lines[m["line"] - 1] = m["text"]
                 (tree / m["file"]).write_text("\n".join(lines))

@@ -204,6 +204,28 @@ TEST(MeshValidate, RemovesDegenerateTrianglesAndUnusedVertices) {
   EXPECT_EQ(m.triangles, unit_cube().triangles);
 }
 
+// The area threshold of a degenerate triangle is 1e-14·D² (mesh.hpp; D = √3 for the unit cube): a stray
+// sliver inside the cube of area 0.75× that (base 0.6, height 2.5·1e-14·D²/0.6 = 7.5e-14) is removed, one of
+// 1.5× is a real triangle, which leaves the surface open.
+TEST(MeshValidate, TheDegenerateAreaThresholdIsOneE14TimesTheDiagonalSquared) {
+  const double threshold = 1e-14 * 3.0;  // D² = 3
+  for (const double fraction : {0.75, 1.5}) {
+    TriangleMesh m = unit_cube();
+    const double h = 2 * fraction * threshold / 0.6;  // area ½·0.6·h
+    m.vertices.emplace_back(0.2, 0.2, 0.5);
+    m.vertices.emplace_back(0.8, 0.2, 0.5);
+    m.vertices.emplace_back(0.5, 0.2 + h, 0.5);
+    m.triangles.push_back({8, 9, 10});
+    if (fraction < 1) {
+      const MeshReport r = validate_mesh(m, "cube");
+      EXPECT_EQ(r.degenerate_triangles, 1);
+      EXPECT_EQ(m.triangles, unit_cube().triangles);
+    } else {
+      EXPECT_THAT(validation_error(m), HasSubstr("open surface"));
+    }
+  }
+}
+
 TEST(MeshValidate, AllTrianglesDegenerateIsRejected) {
   TriangleMesh m;
   m.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0)};

@@ -229,7 +229,8 @@ TEST(Shapes, IsShapeSpec) {
   EXPECT_TRUE(is_shape_spec("sphere:r=1"));  // unknown, but a spec: make_shape reports it
   EXPECT_TRUE(is_shape_spec("irregular:seed=1"));
   EXPECT_FALSE(is_shape_spec("cube.stl"));
-  EXPECT_FALSE(is_shape_spec("C:\\meshes\\cube.stl"));
+  EXPECT_FALSE(is_shape_spec("C:\\meshes\\cube.stl"));  // one letter: a drive
+  EXPECT_TRUE(is_shape_spec("ab:x=1"));                 // two are the shortest name
   EXPECT_FALSE(is_shape_spec("data/a:b.stl"));
   EXPECT_FALSE(is_shape_spec(""));
   EXPECT_FALSE(is_shape_spec(":x=1"));

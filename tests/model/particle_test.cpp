@@ -64,11 +64,11 @@ TEST(FaceStabilityMargin, AnOverhangingFaceIsUnstable) {
 // pentagon (0,0), (2,0), (2,1), (1,2), (0,2) of area 3.5, so the mesh covers 3/3.5 = 86 % of each cap: a cap
 // is not flat (a particle resting on it stands on the cap's corners, not on a surface), nor is the hull face
 // across the notch (covered 0 %), while the four full sides are flat (covered 100 %).
-TEST(FaceIsFlat, OnlyHullFacesTheMeshCoversWhollyAreSurfaces) {
+TriangleMesh l_prism(double scale) {
   const std::vector<Vec2> foot = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};  // counter-clockwise
   TriangleMesh m;
   for (double z : {0.0, 1.0})
-    for (const Vec2& p : foot) m.vertices.emplace_back(p.x(), p.y(), z);
+    for (const Vec2& p : foot) m.vertices.push_back(scale * Vec3(p.x(), p.y(), z));
   const int n = static_cast<int>(foot.size());
   for (int i = 1; i + 1 < n; ++i) {                // the footprint is star-shaped from vertex 0: a fan
     m.triangles.push_back({0, i + 1, i});          // bottom, facing −z
@@ -79,13 +79,21 @@ TEST(FaceIsFlat, OnlyHullFacesTheMeshCoversWhollyAreSurfaces) {
     m.triangles.push_back({i, j, n + j});
     m.triangles.push_back({i, n + j, n + i});
   }
-  const Particle l = make_particle(m, "L-prism", 1.0);
-  ASSERT_EQ(l.hull.faces.size(), 7u);  // 2 caps, 4 full sides, 1 across the notch
-  for (std::size_t f = 0; f < l.hull.faces.size(); ++f) {
-    const Vec3& normal = l.hull.faces[f].normal;
-    const bool cap = std::abs(normal.z()) > 0.5;
-    const bool notch = normal.x() > 0.1 && normal.y() > 0.1;  // (1, 1)/√2
-    EXPECT_EQ(l.face_is_flat[f], !cap && !notch) << "hull face with normal " << normal.transpose();
+  return m;
+}
+
+// The same at any size (the coverage's plane tolerance is 1e-9·L): 1e-6, 1 and 1e6 units.
+TEST(FaceIsFlat, OnlyHullFacesTheMeshCoversWhollyAreSurfaces) {
+  for (const double scale : {1.0, 1e-6, 1e6}) {
+    const Particle l = make_particle(l_prism(scale), "L-prism", 1.0);
+    ASSERT_EQ(l.hull.faces.size(), 7u);  // 2 caps, 4 full sides, 1 across the notch
+    for (std::size_t f = 0; f < l.hull.faces.size(); ++f) {
+      const Vec3& normal = l.hull.faces[f].normal;
+      const bool cap = std::abs(normal.z()) > 0.5;
+      const bool notch = normal.x() > 0.1 && normal.y() > 0.1;  // (1, 1)/√2
+      EXPECT_EQ(l.face_is_flat[f], !cap && !notch)
+          << scale << ": hull face with normal " << normal.transpose();
+    }
   }
 }
 
@@ -140,25 +148,10 @@ TEST(SmoothSurface, ThirtyDegreesBetweenNeighbouringTrianglesIsTheLimit) {
     EXPECT_TRUE(p.convex_surface) << degrees;
     EXPECT_EQ(is_smooth_surface(p), degrees < 30) << degrees;
   }
-  // A reflex edge makes any mesh non-smooth: a box with a notch (an L-prism) is not convex.
-  TriangleMesh notch;
-  // L-shaped prism, extruded along z from the polygon (0,0) (2,0) (2,1) (1,1) (1,2) (0,2).
-  const double xy[6][2] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
-  for (const double z : {0.0, 1.0})
-    for (const auto& v : xy) notch.vertices.emplace_back(v[0], v[1], z);
-  const std::vector<Triangle> caps = {{0, 2, 1}, {0, 3, 2}, {0, 5, 3}, {3, 5, 4}};
-  for (const Triangle& t : caps) {
-    notch.triangles.push_back(t);                               // bottom, facing −z
-    notch.triangles.push_back({t[0] + 6, t[2] + 6, t[1] + 6});  // top, facing +z
-  }
-  for (int i = 0; i < 6; ++i) {
-    const int j = (i + 1) % 6;
-    notch.triangles.push_back({i, j, j + 6});
-    notch.triangles.push_back({i, j + 6, i + 6});
-  }
-  const Particle l_prism = make_particle(notch, "l-prism", 1.0);
-  EXPECT_FALSE(l_prism.convex_surface);
-  EXPECT_FALSE(is_smooth_surface(l_prism));
+  // A reflex edge makes any mesh non-smooth: the L-prism (FaceIsFlat) is not convex.
+  const Particle notched = make_particle(l_prism(1.0), "l-prism", 1.0);
+  EXPECT_FALSE(notched.convex_surface);
+  EXPECT_FALSE(is_smooth_surface(notched));
 }
 
 // Found by fuzz_mesh_off / fuzz_mesh_ply: a cube whose vertices were moved until its faces pass through each

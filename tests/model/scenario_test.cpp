@@ -112,6 +112,13 @@ TEST(ScenarioFile, RejectsTyposAndBadValues) {
             std::string::npos);
   EXPECT_NE(message(R"({"particle": "box:x=1,y=1,z=1", "tolerance": 0.1})").find("tolerance"),
             std::string::npos);
+  // smooth: one of auto, on, off.
+  for (const char* mode : {"auto", "on", "off"})
+    EXPECT_EQ(message(std::string(R"({"particle": "box:x=1,y=1,z=1", "smooth": ")") + mode + "\"}"),
+              "accepted")
+        << mode;
+  EXPECT_NE(message(R"({"particle": "box:x=1,y=1,z=1", "smooth": "maybe"})").find("smooth"),
+            std::string::npos);
 }
 
 // The integrator and its tolerance are scenario fields; absent, the library's defaults.
