@@ -175,8 +175,10 @@ TEST(RestLandscape, BasinsCoverTheSphere) {
 
 TEST(RestLandscape, CubeAndTetrahedronFacesAreEquallyLikely) {
   // Symmetry: the rotations of the solid permute its faces and preserve areas on the sphere.
-  for (const auto& [shape, faces] :
-       std::vector<std::pair<std::string, int>>{{"box:x=1,y=1,z=1", 6}, {"tetrahedron:edge=1", 4}}) {
+  for (const auto& [shape, faces] : std::vector<std::pair<std::string, int>>{{"box:x=1,y=1,z=1", 6},
+                                                                             {"tetrahedron:edge=1", 4},
+                                                                             {"box:x=1e-9,y=1e-9,z=1e-9", 6},
+                                                                             {"tetrahedron:edge=1e9", 4}}) {
     const Particle particle = load_particle(shape, 1.0);
     const RestLandscape land = compute_rest_landscape(particle);
     ASSERT_EQ(static_cast<int>(land.basin_probability.size()), faces) << shape;
@@ -192,26 +194,31 @@ TEST(RestLandscape, BoxMatchesItsClosedForm) {
   // midpoint, e.g. m_xy = (A, B, 0)/|..| between e_x and e_y. The great circles p–m split the octant into
   // three quadrilaterals, one per face: the basin of +x in the (+,+,+) octant is (e_x, m_xy, p, m_xz), and by
   // the box's mirror symmetries the basin of each x face is 4 such quadrilaterals.
+  // The same at 1e-9 and 1e9 units: the probabilities do not depend on size (the landscape's tolerances are
+  // relative to L).
   const double A = 0.5, B = 1.0, C = 1.5;
-  const Particle particle = load_particle("box:x=1,y=2,z=3", 1.0);
-  const RestLandscape land = compute_rest_landscape(particle);
-  const Vec3 p = Vec3(A, B, C).normalized();
-  const Vec3 ex = Vec3::UnitX(), ey = Vec3::UnitY(), ez = Vec3::UnitZ();
-  const Vec3 mxy = Vec3(A, B, 0).normalized(), mxz = Vec3(A, 0, C).normalized(),
-             myz = Vec3(0, B, C).normalized();
-  const double px = 4 * girard_area({ex, mxy, p, mxz}) / (4 * kPi);
-  const double py = 4 * girard_area({ey, myz, p, mxy}) / (4 * kPi);
-  const double pz = 4 * girard_area({ez, mxz, p, myz}) / (4 * kPi);
-  EXPECT_NEAR(2 * (px + py + pz), 1.0, kTol);  // the reference itself tiles the sphere
-  for (int sign : {-1, 1}) {
-    EXPECT_NEAR(land.basin_probability[static_cast<std::size_t>(face_with_normal(particle, sign * ex))], px,
-                kTol);
-    EXPECT_NEAR(land.basin_probability[static_cast<std::size_t>(face_with_normal(particle, sign * ey))], py,
-                kTol);
-    EXPECT_NEAR(land.basin_probability[static_cast<std::size_t>(face_with_normal(particle, sign * ez))], pz,
-                kTol);
+  for (const char* spec : {"box:x=1,y=2,z=3", "box:x=1e-9,y=2e-9,z=3e-9", "box:x=1e9,y=2e9,z=3e9"}) {
+    SCOPED_TRACE(spec);
+    const Particle particle = load_particle(spec, 1.0);
+    const RestLandscape land = compute_rest_landscape(particle);
+    const Vec3 p = Vec3(A, B, C).normalized();
+    const Vec3 ex = Vec3::UnitX(), ey = Vec3::UnitY(), ez = Vec3::UnitZ();
+    const Vec3 mxy = Vec3(A, B, 0).normalized(), mxz = Vec3(A, 0, C).normalized(),
+               myz = Vec3(0, B, C).normalized();
+    const double px = 4 * girard_area({ex, mxy, p, mxz}) / (4 * kPi);
+    const double py = 4 * girard_area({ey, myz, p, mxy}) / (4 * kPi);
+    const double pz = 4 * girard_area({ez, mxz, p, myz}) / (4 * kPi);
+    EXPECT_NEAR(2 * (px + py + pz), 1.0, kTol);  // the reference itself tiles the sphere
+    for (int sign : {-1, 1}) {
+      EXPECT_NEAR(land.basin_probability[static_cast<std::size_t>(face_with_normal(particle, sign * ex))], px,
+                  kTol);
+      EXPECT_NEAR(land.basin_probability[static_cast<std::size_t>(face_with_normal(particle, sign * ey))], py,
+                  kTol);
+      EXPECT_NEAR(land.basin_probability[static_cast<std::size_t>(face_with_normal(particle, sign * ez))], pz,
+                  kTol);
+    }
+    std::cout << spec << ": P(x face) = " << px << ", P(y face) = " << py << ", P(z face) = " << pz << "\n";
   }
-  std::cout << "box 1x2x3: P(x face) = " << px << ", P(y face) = " << py << ", P(z face) = " << pz << "\n";
 }
 
 TEST(RestLandscape, PolygonalCylinderApproachesTheSmoothCylinder) {
