@@ -83,4 +83,18 @@ TEST(PosesStudyFile, TheIntegratorIsASettingThatRoundTripsAndBlocksMerging) {
   EXPECT_EQ(parse_poses_json(old, "old.json").params.integrator, Integrator::paper);
 }
 
+// A merged result reports the most threads any of its parts ran on, whichever order they are merged in.
+TEST(PosesStudyFile, AMergeReportsTheLargestThreadCount) {
+  const Particle particle = load_particle("box:x=1,y=2,z=3", 1.0);
+  const RestLandscape landscape = compute_rest_landscape(particle);
+  PosesStudy one = prepare_study(particle, landscape, StudySettings{});
+  PosesStudy two = one;
+  one.threads = 1;
+  one.tally.ranges = {{0, 10}};
+  two.threads = 2;
+  two.tally.ranges = {{10, 20}};
+  EXPECT_EQ(merge_studies(one, two).threads, 2);
+  EXPECT_EQ(merge_studies(two, one).threads, 2);
+}
+
 }  // namespace
