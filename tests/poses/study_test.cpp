@@ -3,9 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <set>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "repose/error.hpp"
 #include "repose/model/particle.hpp"
@@ -81,6 +84,48 @@ TEST(PosesStudyFile, TheIntegratorIsASettingThatRoundTripsAndBlocksMerging) {
   EXPECT_THROW(merge_studies(paper, adaptive), Error);
   const std::string old = replace_once(poses_json(adaptive), "\"integrator\": \"adaptive\",", "");
   EXPECT_EQ(parse_poses_json(old, "old.json").params.integrator, Integrator::paper);
+}
+
+// The CSV and the table of a result give each pose's probability with its 95 % Wilson interval, against the
+// closed form (p + z²/2n ± z·sqrt(p(1 − p)/n + z²/4n²))/(1 + z²/n), z = 1.959963984540054, to 1e-15 (the CSV
+// prints 17 digits) and to the table's 5 decimals.
+TEST(PosesStudyFile, CsvAndTableGiveEachPoseItsWilsonInterval) {
+  const Particle particle = load_particle("box:x=1,y=2,z=3", 1.0);
+  const RestLandscape landscape = compute_rest_landscape(particle);
+  PosesStudy s = prepare_study(particle, landscape, StudySettings{});
+  ASSERT_GE(s.tally.poses.size(), 2u);
+  const double n = 100;
+  s.tally.ranges = {{0, 100}};
+  s.tally.status_counts[1] = 100;
+  s.tally.poses[0].count = 30;
+  s.tally.poses[1].count = 70;
+  const double z = 1.959963984540054;
+  auto wilson = [&](double k, int sign) {
+    const double p = k / n;
+    return (p + z * z / (2 * n) + sign * z * std::sqrt(p * (1 - p) / n + z * z / (4 * n * n))) /
+           (1 + z * z / n);
+  };
+  std::istringstream csv(poses_csv(s));
+  std::string line;
+  std::getline(csv, line);
+  ASSERT_EQ(line.rfind("pose,face,count,probability,ci95_lo,ci95_hi,", 0), 0u) << line;
+  int checked = 0;
+  while (std::getline(csv, line)) {
+    std::vector<std::string> cells;
+    std::stringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    const int pose = std::stoi(cells[0]);
+    const double k = static_cast<double>(s.tally.poses[static_cast<std::size_t>(pose)].count);
+    EXPECT_EQ(std::stod(cells[2]), k) << line;
+    EXPECT_NEAR(std::stod(cells[3]), k / n, 1e-15) << line;
+    EXPECT_NEAR(std::stod(cells[4]), wilson(k, -1), 1e-15) << line;
+    EXPECT_NEAR(std::stod(cells[5]), wilson(k, +1), 1e-15) << line;
+    ++checked;
+  }
+  EXPECT_EQ(checked, static_cast<int>(s.catalog.poses.size()));
+  char row70[64];
+  std::snprintf(row70, sizeof row70, "0.70000  [%.5f, %.5f]", wilson(70, -1), wilson(70, +1));
+  EXPECT_NE(poses_table(s).find(row70), std::string::npos) << poses_table(s);
 }
 
 // A merged result reports the most threads any of its parts ran on, whichever order they are merged in.
