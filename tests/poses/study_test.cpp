@@ -126,6 +126,10 @@ TEST(PosesStudyFile, CsvAndTableGiveEachPoseItsWilsonInterval) {
   char row70[64];
   std::snprintf(row70, sizeof row70, "0.70000  [%.5f, %.5f]", wilson(70, -1), wilson(70, +1));
   EXPECT_NE(poses_table(s).find(row70), std::string::npos) << poses_table(s);
+  // Poses with no drops and a quasi-static probability below 1e-4 are left out of the table, and counted.
+  s.catalog.poses[2].quasi_static_probability = 1e-5;
+  s.catalog.poses[3].quasi_static_probability = 0.5e-4;
+  EXPECT_NE(poses_table(s).find("(2 rarer poses with no drops"), std::string::npos) << poses_table(s);
 }
 
 // A merged result reports the most threads any of its parts ran on, whichever order they are merged in.
