@@ -31,87 +31,14 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from operators import OPERATORS  # noqa: E402
+from mutants import mutants_of, sampled  # noqa: E402
+from report import load_equivalents, module_of, write_report  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 # Never run: the pinned hash of the engine's output fails on any change, right or wrong; the package tests
 # install and build a consumer (minutes, and they test packaging, not results).
 PINNED_HASH = "Determinism.FixedBatchHashesToTheGoldenValue"
 DEFAULT_EXCLUDE = r"^Determinism\.FixedBatchHashesToTheGoldenValue$|^package\."
-SKIP_LINE = re.compile(r"^\s*(#|//)|\bthrow\b|\bError\(|fprintf|std::cout|std::cerr|static_assert|\btrace\b")
-
-
-def blank_literals_and_comments(line):
-    """The line with string/char literal contents and a trailing // comment replaced by spaces (same length),
-    so operators never match inside them."""
-    out, i, quote = [], 0, None
-    while i < len(line):
-        c = line[i]
-        if quote:
-            if c == "\\":
-                out.append("  ")
-                i += 2
-                continue
-            out.append(c if c == quote else " ")
-            if c == quote:
-                quote = None
-        elif c in "\"'":
-            quote = c
-            out.append(c)
-        elif line.startswith("//", i):
-            out.append(" " * (len(line) - i))
-            break
-        else:
-            out.append(c)
-        i += 1
-    return "".join(out)[: len(line)]
-
-
-def mutants_of(rel_path, text):
-    """Every mutant of one source file: dicts with a stable key (file, operator, line text, occurrence)."""
-    lines = text.split("\n")
-    result, in_block_comment = [], False
-    seen = {}  # stripped line text -> how many times it has occurred so far
-    for number, line in enumerate(lines, start=1):
-        stripped = line.strip()
-        if in_block_comment:
-            in_block_comment = "*/" not in stripped
-            continue
-        if stripped.startswith("/*"):
-            in_block_comment = "*/" not in stripped
-            continue
-        if SKIP_LINE.search(line):
-            continue
-        masked = blank_literals_and_comments(line)
-        repeat = seen.get(stripped, 0)
-        seen[stripped] = repeat + 1
-        for name, pattern, replacement in OPERATORS:
-            for occurrence, match in enumerate(re.finditer(pattern, masked)):
-                new_text = match.expand(replacement) if isinstance(replacement, str) else replacement(match)
-                mutated = line[: match.start()] + new_text + line[match.end() :]
-                if mutated == line:
-                    continue
-                # The key names the line by its text (stable when other lines move); an identical line
-                # seen before in the file gets its repeat count, so each copy is a mutant of its own.
-                ident = f"{rel_path}|{name}|{line.strip()}|{occurrence}"
-                ident += f"|{repeat}" if repeat else ""
-                digest = hashlib.sha1(ident.encode()).hexdigest()
-                result.append({"key": digest[:12], "file": rel_path, "line": number, "operator": name,
-                               "original": line.strip(), "mutated": mutated.strip(), "text": mutated})
-    return result
-
-
-def sampled(mutant, fraction, seed):
-    """Deterministic sample: a mutant is in if the hash of (seed, key) falls below the fraction."""
-    if fraction >= 1:
-        return True
-    h = int(hashlib.sha1(f"{seed}|{mutant['key']}".encode()).hexdigest()[:8], 16)
-    return h < fraction * 0x100000000
-
-
-def module_of(rel_path):
-    parts = Path(rel_path).parts
-    return "/".join(parts[:2]) if len(parts) > 2 else parts[0]
 
 
 # ---- the copy of the tree and its build -------------------------------------------------------------------
@@ -213,65 +140,6 @@ def run_tests(tests, order, timeouts, jobs, stop_on_failure=True):
             if (timed_out or rc != 0) and failed is None:
                 failed, how = name, "timeout" if timed_out else "failed"
     return failed, how, durations
-
-
-# ---- the report -------------------------------------------------------------------------------------------
-
-
-def load_equivalents():
-    """scripts/mutation/equivalent.txt: `KEY  reason` lines for survivors shown to be equivalent."""
-    path = Path(__file__).resolve().parent / "equivalent.txt"
-    result = {}
-    if path.exists():
-        for line in path.read_text().splitlines():
-            if line.strip() and not line.startswith("#"):
-                key, _, reason = line.strip().partition(" ")
-                result[key] = reason.strip()
-    return result
-
-
-def write_report(results, path, command):
-    equivalents = load_equivalents()
-    modules = {}
-    for r in results:
-        m = modules.setdefault(module_of(r["file"]), {"mutants": 0, "killed": 0, "equivalent": 0,
-                                                      "survived": 0, "stillborn": 0})
-        if r["outcome"] == "stillborn":
-            m["stillborn"] += 1
-            continue
-        if r["outcome"] == "same-object" or (r["outcome"] == "survived" and r["key"] in equivalents):
-            m["equivalent"] += 1
-            continue
-        m["mutants"] += 1
-        m["killed" if r["outcome"] in ("killed", "timeout") else "survived"] += 1
-    lines = [f"Produced by `{command}`.", "",
-             "| module | mutants | killed | survived | score | equivalent (not counted) | stillborn |",
-             "|---|---|---|---|---|---|---|"]
-    total = {"mutants": 0, "killed": 0}
-    for name, m in sorted(modules.items()):
-        score = 100.0 * m["killed"] / m["mutants"] if m["mutants"] else 100.0
-        total["mutants"] += m["mutants"]
-        total["killed"] += m["killed"]
-        lines.append(f"| {name} | {m['mutants']} | {m['killed']} | {m['survived']} | {score:.1f} % | "
-                     f"{m['equivalent']} | {m['stillborn']} |")
-    if total["mutants"]:
-        lines.append(f"| **all** | {total['mutants']} | {total['killed']} | "
-                     f"{total['mutants'] - total['killed']} | {100.0 * total['killed'] / total['mutants']:.1f} % "
-                     "| | |")
-    lines += ["", "| mutant | where | operator | change | outcome |", "|---|---|---|---|---|"]
-    for r in sorted(results, key=lambda r: (r["file"], r["line"], r["operator"])):
-        if r["outcome"] == "stillborn":
-            continue
-        outcome = {"killed": f"killed by {r.get('killer')}", "timeout": f"killed (timeout in {r.get('killer')})",
-                   "same-object": "equivalent: same object code"}.get(r["outcome"], "")
-        if r["outcome"] == "survived":
-            outcome = f"equivalent: {equivalents[r['key']]}" if r["key"] in equivalents else "**survived**"
-            if "results_same" in r:
-                outcome += " (pinned batch: " + ("same results" if r["results_same"] else "results change") + ")"
-        change = f"`{r['original']}` → `{r['mutated']}`".replace("|", "\\|")
-        lines.append(f"| {r['key']} | {r['file']}:{r['line']} | {r['operator']} | {change} | {outcome} |")
-    Path(path).write_text("\n".join(lines) + "\n")
-    return lines
 
 
 # ---- main -------------------------------------------------------------------------------------------------
