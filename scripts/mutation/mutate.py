@@ -253,30 +253,34 @@ def main():
     if retest:  # the file keeps the last outcome of every mutant
         results_path.write_text("".join(json.dumps(r) + "\n" for r in done.values()))
     results_file = open(results_path, "a")
+
+    def plant(m):  # one bug at a time: the mutated line in the tree's copy of its file
+        lines = originals[m["file"]].split("\n")
+        lines[m["line"] - 1] = m["text"]
+        (tree / m["file"]).write_text("\n".join(lines))
+
+    def keep(record):
+        results_file.write(json.dumps(record) + "\n")
+        results_file.flush()
+        done[record["key"]] = record
+
     try:
         for i, m in enumerate(mutants):
             if args.check_survivors:  # the pinned hash of the survivors so far, nothing else
                 if m["key"] not in done or done[m["key"]]["outcome"] != "survived" or \
                         "results_same" in done[m["key"]]:
                     continue
-            elif m["key"] in done:
-                continue
-            if args.check_survivors:
-                lines = originals[m["file"]].split("\n")
-                lines[m["line"] - 1] = m["text"]
-                (tree / m["file"]).write_text("\n".join(lines))
+                plant(m)
                 record = dict(done[m["key"]])
                 record["results_same"] = build(build_dir, work / "mutant-build.log") and results_same(build_dir)
                 (tree / m["file"]).write_text(originals[m["file"]])
-                results_file.write(json.dumps(record) + "\n")
-                results_file.flush()
-                done[m["key"]] = record
+                keep(record)
                 print(f"[{i + 1}/{len(mutants)}] {m['file']}:{m['line']} {m['operator']}: pinned batch "
                       f"{'same results' if record['results_same'] else 'results change'}", flush=True)
                 continue
-            lines = originals[m["file"]].split("\n")
-            lines[m["line"] - 1] = m["text"]
-            (tree / m["file"]).write_text("\n".join(lines))
+            if m["key"] in done:
+                continue
+            plant(m)
             t0 = time.monotonic()
             record = {k: m[k] for k in ("key", "file", "line", "operator", "original", "mutated")}
             if not build(build_dir, work / "mutant-build.log"):
@@ -295,11 +299,9 @@ def main():
                         kills[killer] = kills.get(killer, 0) + 1
                     else:
                         record["results_same"] = results_same(build_dir)
-            (tree / m["file"]).write_text(originals[m["file"]])  # one bug at a time: put the file back
+            (tree / m["file"]).write_text(originals[m["file"]])  # put the file back
             record["seconds"] = round(time.monotonic() - t0, 1)
-            results_file.write(json.dumps(record) + "\n")
-            results_file.flush()
-            done[m["key"]] = record
+            keep(record)
             print(f"[{i + 1}/{len(mutants)}] {m['file']}:{m['line']} {m['operator']}: {record['outcome']}"
                   f"{' by ' + record['killer'] if record.get('killer') else ''} ({record['seconds']} s)",
                   flush=True)

@@ -32,6 +32,11 @@ Touch touch(int vertex, double x, double y, double height, const Vec3& com) {
   return {vertex, w, w - com, height};
 }
 
+// The touching points A (0, 0), B (2, 0), C (0, 2) on the wall, vertices first, first + 1, first + 2.
+std::vector<Touch> triangle_abc(const Vec3& com, int first = 0) {
+  return {touch(first, 0, 0, 0, com), touch(first + 1, 2, 0, 0, com), touch(first + 2, 0, 2, 0, com)};
+}
+
 TEST(ImpactSupport, AFarSideEdgeIsChosenWhenTheNearestEdgeAndTheFirstEdgeWouldDriveAPointDown) {
   // Touching points A (0, 0), B (2, 0), C (0, 2) (their polygon is A, B, C in that order), centre of mass
   // G = (−0.2, 1, 1) just outside edge CA, arriving at v = (2, 0.5, −1) with no spin. By the file comment's
@@ -46,8 +51,7 @@ TEST(ImpactSupport, AFarSideEdgeIsChosenWhenTheNearestEdgeAndTheFirstEdgeWouldDr
   const Body body = test_body();
   const Vec3 com(-0.2, 1, 1);
   const Impact impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3(2, 0.5, -1), 1.0, 1e-9, 1e-6};
-  const std::vector<Touch> touching = {touch(10, 0, 0, 0, com), touch(11, 2, 0, 0, com),
-                                       touch(12, 0, 2, 0, com)};
+  const std::vector<Touch> touching = triangle_abc(com, 10);
   Support about_ca{touching[2].world, touching[2].body, true, Vec3(0, -1, 0)};
   Support about_ab{touching[0].world, touching[0].body, true, Vec3(1, 0, 0)};
   Support about_bc{touching[1].world, touching[1].body, true, Vec3(-1, 1, 0).normalized()};
@@ -69,8 +73,7 @@ TEST(ImpactSupport, FromRestTheNearestFeatureLetsTheOthersLiftOff) {
   const Body body = test_body();
   const Vec3 com(3, 0.5, 1);
   const Impact impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3::Zero(), 1.0, 1e-9, 1e-6};
-  const std::vector<Touch> touching = {touch(0, 0, 0, 0, com), touch(1, 2, 0, 0, com),
-                                       touch(2, 0, 2, 0, com)};
+  const std::vector<Touch> touching = triangle_abc(com);
   const SupportChoice c = choose_from_touching(impact, touching, Vec2(com.x(), com.y()));
   EXPECT_EQ(c.vertex, 1);
   EXPECT_FALSE(c.support.line);
@@ -86,8 +89,7 @@ TEST(ImpactSupport, WhenNoFeatureLetsTheOthersLiftTheNearestEdgeKeepsTwoPointsOn
   const Body body = test_body();
   const Vec3 com(0.5, 0.6, 1);
   const Impact impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3::Zero(), 1.0, 1e-9, 1e-6};
-  const std::vector<Touch> touching = {touch(0, 0, 0, 0, com), touch(1, 2, 0, 0, com),
-                                       touch(2, 0, 2, 0, com)};
+  const std::vector<Touch> touching = triangle_abc(com);
   for (const Touch& p : touching) EXPECT_FALSE(others_separate(impact, touching, Support{p.world, p.body}));
   EXPECT_FALSE(
       others_separate(impact, touching, Support{touching[0].world, touching[0].body, true, Vec3(1, 0, 0)}));
