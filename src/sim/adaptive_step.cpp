@@ -12,9 +12,8 @@
 
 namespace repose {
 
-// The hull vertices at most `level` above the wall at orientation `qq` about the current support, appended
-// to `out` (in index order if `sorted`: the order of a contact list matters to its fit's round-off and
-// to ties): a walk from the lowest vertex over the hull's edge graph (a linear function's sublevel sets on a
+// The hull vertices at most `level` above the wall at orientation `qq` about the current support, in `out`
+// (in index order if `sorted`: the order of a contact list matters to its fit's round-off and to ties): a walk from the lowest vertex over the hull's edge graph (a linear function's sublevel sets on a
 // convex polytope are connected), so the cost is the set and its border. The walk runs 1e-12·L beyond
 // `level` and the exact test (the same arithmetic as heights()) picks the members.
 void Settler::Impl::vertices_below(const Quat& qq, double level, std::vector<int>& out, bool sorted) {
@@ -24,10 +23,10 @@ void Settler::Impl::vertices_below(const Quat& qq, double level, std::vector<int
   const double base = support.world.z() - r3.dot(support.body);  // height = base + r3·p
   walk_out.clear();
   particle.hull.vertices_at_least(down, -(level + event_tol - base), lowest_vertex, walk_out, walk_visited);
-  const std::size_t first = out.size();
+  out.clear();
   for (int k : walk_out)
     if (support.world.z() + r3.dot(particle.hull.vertices[k] - support.body) <= level) out.push_back(k);
-  if (sorted) std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
+  if (sorted) std::sort(out.begin(), out.end());
 }
 
 // The height of the lowest hull vertex at orientation q (a walk downhill from the last lowest vertex).
@@ -151,7 +150,6 @@ void Settler::Impl::begin_adaptive_step() {
   // heights (the baseline of the pierce test) are refreshed. Of those, the ones that can reach one of their
   // own event levels are checked; most steps keep none and look no further.
   std::vector<int>& candidates = event_candidates;
-  candidates.clear();
   vertices_below(rot.q, level + arc * reach_radius + event_tol, candidates, false);
   const Vec3 r3 = rot.q.toRotationMatrix().row(2).transpose();
   std::vector<int>& reachable = walk_out;
@@ -251,7 +249,6 @@ Settler::Impl::Decision Settler::Impl::decision_at(const Quat& qq) {
   // a drop, and only the decisions they change matter): the contact set is the one at this pose.
   const bool own_set = band_crossings_in_decisions();
   if (own_set) {
-    decision_set.clear();
     vertices_below(qq, band + touch_tol, decision_set, true);
     contact.swap(decision_set);
   }

@@ -24,7 +24,6 @@ void Settler::Impl::update_contacts(const Vec3& omega, const Vec3& com_velocity,
   if (adaptive) {
     // Only the vertices near the wall, by a walk (the lowest vertex is among them).
     for (int k : contact) in_contact[k] = 0;
-    contact.clear();
     vertices_below(q, contact_level, contact, true);
     const Vec3 r3 = q.toRotationMatrix().row(2).transpose();
     for (int k : contact) {
