@@ -133,7 +133,7 @@ bool Settler::Impl::paper_stability_test(const std::vector<Vec3>& contact_points
   // Only faces whose first vertex is a contact can be contact elements; visiting just those keeps this
   // check proportional to the contacts, not to the hull (thousands of faces for a scanned grain).
   for (int first : contact)
-    for (int f : first_vertex_faces[first]) {
+    for (int f : particle.hull.faces_starting_at[first]) {
       const HullFace& face = particle.hull.faces[f];
       bool element = true;
       for (int k : face.loop) element = element && in_contact[k];

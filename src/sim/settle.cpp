@@ -102,9 +102,6 @@ Settler::Impl::Impl(const Particle& p, const SettleParams& prm, const Quat& orie
   z.resize(n);
   in_contact.resize(n);
   walk_visited.resize(n);
-  first_vertex_faces.resize(n);
-  for (std::size_t f = 0; f < p.hull.faces.size(); ++f)
-    first_vertex_faces[p.hull.faces[f].loop.front()].push_back(static_cast<int>(f));
   lowest_body_height = INFINITY;
   for (const Vec3& v : p.hull.vertices) lowest_body_height = std::min(lowest_body_height, (q * v).z());
   com = Vec3(0, 0, params.drop_height - lowest_body_height);

@@ -111,8 +111,6 @@ struct Settler::Impl {
   std::vector<char> walk_visited;  // scratch of hull size, all zero between uses
   std::vector<int> walk_out;       // scratch: a walk's vertices, then a step's reachable vertices
   int lowest_vertex = 0;           // the lowest hull vertex at the last walk (its start)
-  std::vector<std::vector<int>>
-      first_vertex_faces;  // per hull vertex: the hull faces whose loop starts there
   std::vector<Phase> phases;
   double max_penetration = 0;
   double energy_start = 0;
