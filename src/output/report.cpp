@@ -33,6 +33,7 @@ std::string settle_summary_json(const Particle& particle, const SettleParams& pa
   j["status"] = to_string(r.status);
   j["time_to_rest"] = r.status == Status::rest ? nlohmann::json(r.time) : nlohmann::json(nullptr);
   j["time"] = r.time;
+  j["stable_time"] = r.stable_time >= 0 ? nlohmann::json(r.stable_time) : nlohmann::json(nullptr);
   j["steps"] = r.steps;
   j["max_penetration"] = r.max_penetration;
   nlohmann::json points = nlohmann::json::array();

@@ -70,15 +70,21 @@ void Settler::Impl::update_contacts(const Vec3& omega, const Vec3& com_velocity,
     // corners of the bottom face). That landing is the only rest: a damped particle creeps onto its facet.
     if (touching.size() >= 3 && touching_points_hold(g) && come_to_rest()) return;
   } else {
+    // The paper's test first: a particle that rests at once (landed flat) has passed it too.
+    if (!finishing && paper_stability_test(contact_points, g)) {
+      finishing = true;
+      stable_time = t;
+    }
     if (touching_points_hold(g) && come_to_rest()) return;
-    if (!finishing && paper_stability_test(contact_points, g)) finishing = true;
   }
   // A surface contact turns about the previous rotation axis: the paper's step remembers it at the end of
   // each step (dt before), the adaptive one from the motion just before this update, which the paper's
   // converges to as dt → 0 (its steps are up to 0.05·τ apart).
   if (adaptive) remember_axis(omega);
   choose_support(fit, g, omega, com_velocity);
-  if (!smooth && kinetic_energy() < 1e-9 * body.mass * params.gravity * length) tip_off_edge_balance(g);
+  // An edge balance with no motion is left by the documented rule (rest.cpp), on a smooth surface too:
+  // otherwise only round-off would tip it, after a time no model sets.
+  if (kinetic_energy() < 1e-9 * body.mass * params.gravity * length) tip_off_edge_balance(g);
   trace_update();
 }
 

@@ -163,6 +163,7 @@ SettleResult Settler::Impl::result() const {
   SettleResult r;
   r.status = status;
   r.time = t;
+  r.stable_time = stable_time;
   r.steps = steps;
   r.max_penetration = max_penetration;
   r.orientation = q;

@@ -88,7 +88,8 @@ struct Settler::Impl {
   double restart_step = 0;  // adaptive: the first trial step of a restart (0: from rest, a short one)
   double step_start = 0, step_end = 0;  // adaptive: the current step: its start, its first event or end
   bool step_event = false, step_band_entered = false;
-  bool finishing = false;
+  bool finishing = false;  // the paper's stability test has passed (at stable_time)
+  double stable_time = -1;
   bool trace = std::getenv("REPOSE_TRACE") != nullptr;  // debugging aid: one line per step on stderr
   bool band_entered = true;  // a point entered the ε band in the last step (or contact just began)
   bool has_prev_axis = false;

@@ -93,6 +93,10 @@ TEST_F(SettleCli, TetrahedronJsonSummary) {
   EXPECT_EQ(j["status"], "rest");
   const double t = j["time_to_rest"].get<double>();
   EXPECT_GT(t, 0.0);
+  // Where the paper's run ends (its stability test): before the flush rest, which finishes the rotation.
+  ASSERT_TRUE(j["stable_time"].is_number()) << j["stable_time"];
+  EXPECT_GT(j["stable_time"].get<double>(), 0.0);
+  EXPECT_LT(j["stable_time"].get<double>(), t);
   ASSERT_TRUE(j["steps"].is_number_integer());
   EXPECT_GT(j["steps"].get<long>(), 0);
 

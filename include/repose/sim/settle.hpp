@@ -55,6 +55,10 @@ struct Phase {
 struct SettleResult {
   Status status = Status::running;
   double time = 0;  ///< time to rest (or when the run stopped)
+  /// When the paper's stability test (§2.4) first passed, where the paper's own run ends with the face up to
+  /// ε above the wall (repose then finishes the rotation to a flush rest); −1 if it never passed (a smooth
+  /// particle, which rests by its own rule, or a run stopped before).
+  double stable_time = -1;
   long steps = 0;
   double max_penetration = 0;  ///< largest depth of any vertex below the wall over the run (length)
   Quat orientation = Quat::Identity();
