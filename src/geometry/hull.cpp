@@ -237,9 +237,6 @@ ConvexHull compute_convex_hull(const std::vector<Vec3>& points) {
   for (const HullFace& face : hull.faces)
     for (std::size_t k = 0; k < face.loop.size(); ++k)
       hull.neighbors[static_cast<std::size_t>(face.loop[k])].push_back(face.loop[(k + 1) % face.loop.size()]);
-  hull.faces_starting_at.assign(hull.vertices.size(), {});
-  for (std::size_t f = 0; f < hull.faces.size(); ++f)
-    hull.faces_starting_at[static_cast<std::size_t>(hull.faces[f].loop.front())].push_back(static_cast<int>(f));
   return hull;
 }
 

@@ -262,7 +262,7 @@ Settler::Impl::Decision Settler::Impl::decision_at(const Quat& qq) {
   Decision d;
   d.type = smooth ? ContactType::point : sim::classify_contact(footprints, rss_threshold);
   d.hold = (!smooth || touching.size() >= 3) && touching_points_hold(g);
-  d.stable = !smooth && !finishing && paper_stability_test(contact_points, g);
+  d.stable = !smooth && !finishing && stability_margin(contact_points, g) > 0;
   d.line_holds = support.line && line_is_supported(support_vertex, support.axis);
   if (own_set) contact.swap(decision_set);
   q = q_now;

@@ -71,7 +71,7 @@ void Settler::Impl::update_contacts(const Vec3& omega, const Vec3& com_velocity,
     if (touching.size() >= 3 && touching_points_hold(g) && come_to_rest()) return;
   } else {
     // The paper's test first: a particle that rests at once (landed flat) has passed it too.
-    if (!finishing && paper_stability_test(contact_points, g)) {
+    if (!finishing && stability_margin(contact_points, g) > 0) {
       finishing = true;
       stable_time = t;
     }
@@ -120,12 +120,15 @@ void Settler::Impl::set_type(ContactType new_type) {
 }
 
 // §2.4: a contact element (a hull face all of whose vertices are contacts) hit by the downward ray from the
-// centre of mass, or the centre of mass's projection inside the polygon of contact points. Either suffices.
-bool Settler::Impl::paper_stability_test(const std::vector<Vec3>& contact_points, const Vec2& g) const {
-  if (contact.size() < 3) return false;
-  // Both tests need the centre of mass over the contact points' footprints (a contact element's footprint
-  // lies among them): outside their bounding box, grown by touch_tol, neither can pass. Checked first, it
-  // spares most calls the faces and the 2-D hull (thousands of band points on a fine mesh).
+// centre of mass, or the centre of mass's projection inside the polygon of contact points; either suffices.
+// The first implies the second (an element's vertices are contacts, so the ray's foot, the centre of mass's
+// projection, lies in their polygon) everywhere but on that polygon's boundary, so the polygon decides,
+// as a margin (length) that is positive when the test passes. Fewer than three contacts: −∞. Outside the
+// contacts' bounding box: minus the distance to the box, an upper bound of the true (negative) margin that
+// spares most calls the 2-D hull (thousands of band points on a fine mesh). Collinear contacts give a
+// segment, whose margin is minus the distance to it (never positive): a line of contacts holds nothing.
+double Settler::Impl::stability_margin(const std::vector<Vec3>& contact_points, const Vec2& g) const {
+  if (contact_points.size() < 3) return -INFINITY;
   double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
   for (const Vec3& p : contact_points) {
     x0 = std::min(x0, p.x());
@@ -133,27 +136,11 @@ bool Settler::Impl::paper_stability_test(const std::vector<Vec3>& contact_points
     y0 = std::min(y0, p.y());
     y1 = std::max(y1, p.y());
   }
-  if (g.x() < x0 - touch_tol || g.x() > x1 + touch_tol || g.y() < y0 - touch_tol || g.y() > y1 + touch_tol)
-    return false;
-  const Vec3 down(0, 0, -1);
-  // Only faces whose first vertex is a contact can be contact elements; visiting just those keeps this
-  // check proportional to the contacts, not to the hull (thousands of faces for a scanned grain).
-  for (int first : contact)
-    for (int f : particle.hull.faces_starting_at[first]) {
-      const HullFace& face = particle.hull.faces[f];
-      bool element = true;
-      for (int k : face.loop) element = element && in_contact[k];
-      if (!element) continue;
-      const Vec3 a = world_vertex(face.loop[0]);
-      for (std::size_t i = 1; i + 1 < face.loop.size(); ++i)
-        if (sim::ray_hits_triangle(com, down, a, world_vertex(face.loop[i]), world_vertex(face.loop[i + 1])))
-          return true;
-    }
-  // The polygon of the contact points' footprints; collinear contacts give a segment, whose margin is minus
-  // the distance to it (never positive): a line of contacts holds nothing by itself.
+  const double dx = std::max({x0 - g.x(), g.x() - x1, 0.0}), dy = std::max({y0 - g.y(), g.y() - y1, 0.0});
+  if (dx > 0 || dy > 0) return -std::hypot(dx, dy);
   std::vector<Vec2> plan;
   for (const Vec3& p : contact_points) plan.emplace_back(p.x(), p.y());
-  return sim::polygon_margin(sim::convex_hull_2d(plan, touch_tol), g) > 0;
+  return sim::polygon_margin(sim::convex_hull_2d(plan, touch_tol), g);
 }
 
 // The support the contacts call for (see the file comment), and the switch to it if it is new.

@@ -192,7 +192,7 @@ struct Settler::Impl {
   void quiet_update();
   void trace_update() const;
   void set_type(ContactType new_type);
-  bool paper_stability_test(const std::vector<Vec3>& contact_points, const Vec2& g) const;
+  double stability_margin(const std::vector<Vec3>& contact_points, const Vec2& g) const;
   void choose_support(const sim::LineFit& fit, const Vec2& g, const Vec3& omega, const Vec3& com_velocity);
   bool line_is_supported(int o, const Vec3& axis) const;
   void note_penetration();

@@ -22,9 +22,6 @@ struct ConvexHull {
   std::vector<HullFace> faces;
   /// The edge graph: per vertex, the vertices joined to it by an edge of a (merged, planar) face.
   std::vector<std::vector<int>> neighbors;
-  /// Per vertex, the faces whose `loop` starts at it: visiting the faces of a set of vertices through this
-  /// visits each face at most once.
-  std::vector<std::vector<int>> faces_starting_at;
 
   /// Index (into `vertices`) of the vertex furthest along `direction` (a scan of every vertex).
   int support_vertex(const Vec3& direction) const;
