@@ -60,6 +60,13 @@ double Settler::Impl::arc_bound(double h) const {
   return std::sqrt(2 * k0 / min_moment) * h + 0.25 * b * h * h;
 }
 
+// A bound of |ω| over the next time h (the same energy argument): sqrt(a + b·θ(h)).
+double Settler::Impl::rate_bound(double h) const {
+  const double k0 = kinetic_energy() + 10 * params.tolerance * body.mass * params.gravity * length;
+  const double b = 2 * body.mass * params.gravity * support.body.norm() / min_moment;
+  return std::sqrt(2 * k0 / min_moment + b * arc_bound(h));
+}
+
 // One adaptive step, or the part of it before its first event, then the contact update at its end. The
 // step and its first event are found once, over the whole step, so advance_to() can stop inside it (the
 // state there is only interpolated, with no contact decision) without changing the run.
@@ -293,9 +300,15 @@ void Settler::Impl::locate_decision_change(double t0, double t_end, std::span<co
   if (!changed) {
     const Decision end = decision_at(integrator->orientation_at(t_end));
     end_decision_known = !step_event && end == start;
-    if (end == start) {
+    const double pass = end == start && !start.stable ? brief_stability_pass(t0, t_end) : -1;
+    if (end == start && pass < 0) {
       cached_decision = end;
       return;
+    }
+    if (pass >= 0) {  // the test passed for a moment between the checks: bisected like any change
+      hi = pass;
+      lo = t0;
+      end_decision_known = false;
     }
   } else {
     end_decision_known = false;
@@ -311,6 +324,50 @@ void Settler::Impl::locate_decision_change(double t0, double t_end, std::span<co
   step_end = hi;
   step_event = true;
   step_band_entered = false;
+}
+
+// The paper's stability margin (contact_update.cpp) at orientation qq for the current contact set.
+double Settler::Impl::stability_margin_at(const Quat& qq) {
+  const Quat q_now = q;
+  const Vec3 com_now = com;
+  q = qq;
+  com = sim::com_position(support, q);
+  contact_points.clear();
+  for (int k : contact) contact_points.push_back(world_vertex(k));
+  const double m = stability_margin(contact_points, Vec2(com.x(), com.y()));
+  q = q_now;
+  com = com_now;
+  return m;
+}
+
+// An instant in (t0, t1) at which the paper's stability test passes though it failed at the decision checks
+// (a pass shorter than their spacing), or −1 if there is none: the stability test becoming true is an event
+// of its own (issue 12), so it must not depend on where the checks fall. Before the test has passed the
+// contact set changes only at events, so between t0 and t1 the margin moves only with the pose: every
+// contact point and the centre of mass keep their distance r ≤ R from the pivot and move by at most r·dθ,
+// so the margin is Lipschitz with constant 2·R·|ω|max (rate_bound). An interval whose end margins m_a, m_b
+// satisfy m_a + m_b + 2·R·|ω|max·(b − a) ≤ 0 cannot hold a pass; others are halved, left first, down to
+// 2^-44 of the step (a pass shorter than that is a tangency within round-off: none).
+double Settler::Impl::brief_stability_pass(double t0, double t1) {
+  if (smooth || finishing || contact.size() < 3) return -1;
+  double radius = support.body.norm();  // the centre of mass's distance from the pivot
+  for (int k : contact) radius = std::max(radius, (particle.hull.vertices[k] - support.body).norm());
+  const double lipschitz = 2 * radius * rate_bound(t1 - t0);
+  const double resolution = (t1 - t0) * 0x1p-44;
+  auto margin = [&](double tt) { return stability_margin_at(integrator->orientation_at(tt)); };
+  using Interval = StabilityInterval;
+  std::vector<Interval>& stack = stability_intervals;
+  stack.assign(1, {t0, t1, margin(t0), margin(t1)});
+  for (int evaluations = 0; !stack.empty() && evaluations < kStabilityEvaluations; ++evaluations) {
+    const Interval i = stack.back();
+    stack.pop_back();
+    if (i.ma + i.mb + lipschitz * (i.b - i.a) <= 0 || i.b - i.a <= resolution) continue;
+    const double mid = 0.5 * (i.a + i.b), mm = margin(mid);
+    if (mm > 0) return mid;
+    stack.push_back({mid, i.b, mm, i.mb});
+    stack.push_back({i.a, mid, i.ma, mm});
+  }
+  return -1;
 }
 
 // The adaptive integrator's events: those of the fixed step, and a contact leaving the ε band (Algorithm

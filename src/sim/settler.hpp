@@ -46,6 +46,9 @@ struct Settler::Impl {
   static constexpr int kEventSamples = 8;
   // Contact decisions are also checked at every kDecisionStride-th of those instants inside a step.
   static constexpr std::size_t kDecisionStride = 2;
+  // The search for a brief pass of the stability test within a step evaluates its margin at most this many
+  // times (a bound that only a tangency within ~1e-9 of the margin's scale could reach).
+  static constexpr int kStabilityEvaluations = 4096;
   // A support chosen from several touching points is chosen again at once, at most this many times.
   static constexpr int kRedecisions = 2;
 
@@ -136,6 +139,7 @@ struct Settler::Impl {
   double lowest_height();                                                                 // adaptive_step.cpp
   double smallest_moment() const;                                                         // adaptive_step.cpp
   double arc_bound(double h) const;                                                       // adaptive_step.cpp
+  double rate_bound(double h) const;                                                      // adaptive_step.cpp
 
   // ---- free fall (fall.cpp)
   void fall_step();
@@ -186,6 +190,12 @@ struct Settler::Impl {
   std::vector<int> decision_contact, decision_touching;  // scratch: the sets before an update
   std::vector<int> decision_set;                         // scratch: the contact set at a decision's pose
   void locate_decision_change(double t0, double t_end, std::span<const double> inner);
+  double stability_margin_at(const Quat& qq);
+  double brief_stability_pass(double t0, double t1);
+  struct StabilityInterval {
+    double a, b, ma, mb;  // an interval of time and the margins at its ends
+  };
+  std::vector<StabilityInterval> stability_intervals;  // scratch of brief_stability_pass
 
   // ---- contacts, stability and supports (contact_update.cpp)
   void update_contacts(const Vec3& omega, const Vec3& com_velocity, bool heights_known = false);
