@@ -203,8 +203,6 @@ void Settler::Impl::choose_support(const sim::LineFit& fit, const Vec2& g, const
     remember_axis(omega);
     return;
   }
-  // Keep a consistent axis sign across switches so momentum signs read naturally.
-  if (next.line && support.line && next.axis.dot(support.axis) < 0) next.axis = -next.axis;
   const Vec3 momentum = sim::momentum_after_switch(body, q, com, omega, com_velocity, next);
   // A new support that has sunk by round-off (≤ 1e-12·L) is lifted exactly onto the wall; one that touches
   // from above (within 1e-9·L) stays where it is, so the switch never lowers the particle.
