@@ -104,6 +104,35 @@ TEST(ImpactSupport, WhenNoFeatureLetsTheOthersLiftTheNearestEdgeKeepsTwoPointsOn
   EXPECT_EQ(c.support.axis.z(), 0.0);
 }
 
+TEST(ImpactSupport, WhenNoFeatureLetsTheOthersLiftAndTheNearestIsACornerAnEdgeFromItKeepsTwoOnTheWall) {
+  // The centre of mass G = (−0.5, −0.5, 1) beyond corner A of the triangle A (0, 0), B (2, 0), C (0, 2),
+  // arriving at v = (1, 1, −1) (towards the triangle) with no spin. By the file comment:
+  //   about A: D = (v_x + 0.5·v_z, v_y + 0.5·v_z) = (0.5, 0.5), D·(B − A) = 1 > 0: B goes down;
+  //   about B: D = (v_x + 2.5·v_z, v_y + 0.5·v_z) = (−1.5, 0.5), D·(A − B) = 3 > 0: A goes down;
+  //   about C: D = (v_x + 0.5·v_z, v_y + 2.5·v_z) = (0.5, −1.5), D·(A − C) = 3 > 0: A goes down;
+  //   about AB (P = A, e = x): e × r = (0, −1, −0.5), ℓ ∝ −v_y − 0.5·v_z = −0.5 < 0: C goes down;
+  //   about CA (P = C, e = −y): e × r = (−1, 0, −0.5), ℓ ∝ −0.5 < 0: B goes down;
+  //   about BC (P = B, e ∝ (−1, 1, 0)): e × r ∝ (1, 1, 3), ℓ ∝ v_x + v_y + 3·v_z = −1 < 0: A goes down.
+  // Nothing lets the others lift, and the nearest feature is the corner A: the fallback keeps two points on
+  // the wall, the edge from A to the next corner of the polygon, AB (along x), not A alone.
+  const Body body = test_body();
+  const Vec3 com(-0.5, -0.5, 1);
+  const Impact impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3(1, 1, -1), 1.0, 1e-9, 1e-6};
+  const std::vector<Touch> touching = triangle_abc(com);
+  for (const Touch& p : touching) EXPECT_FALSE(others_separate(impact, touching, Support{p.world, p.body}));
+  EXPECT_FALSE(
+      others_separate(impact, touching, Support{touching[0].world, touching[0].body, true, Vec3(1, 0, 0)}));
+  EXPECT_FALSE(
+      others_separate(impact, touching, Support{touching[2].world, touching[2].body, true, Vec3(0, -1, 0)}));
+  EXPECT_FALSE(others_separate(
+      impact, touching, Support{touching[1].world, touching[1].body, true, Vec3(-1, 1, 0).normalized()}));
+  const SupportChoice c = choose_from_touching(impact, touching, Vec2(com.x(), com.y()));
+  EXPECT_EQ(c.vertex, 0);
+  EXPECT_TRUE(c.support.line);
+  EXPECT_NEAR(std::abs(c.support.axis.x()), 1.0, 1e-15);
+  EXPECT_EQ(c.support.axis.z(), 0.0);
+}
+
 TEST(ImpactSupport, APointRisingSlowerThanTheVelocityToleranceOrPulledBackAtOnceDoesNotSeparate) {
   // A hinge along x through P = (0, 0, 0); the other touching point T = (0, 1, 0); centre of mass
   // G = (0, 0.5, 1), no translation, spin w about x before. By hand (file comment, isotropic k = 0.1, m = 1):
