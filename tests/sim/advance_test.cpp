@@ -66,6 +66,25 @@ TEST(AdvanceTo, ThePaperIntegratorLandsOnTheRequestedTimesToo) {
   EXPECT_NEAR(r.time, whole.time, 1e-7 * whole.time);
 }
 
+// A time limit inside a rotation stops the run exactly there, with either integrator (status max_time): the
+// paper's step before the limit is shortened to end on it (10 whole steps of 1 ms, then 0.5 ms), the
+// adaptive one stops inside its step (the state there interpolated). A cube tilted 0.3 rad on an edge.
+TEST(AdvanceTo, ATimeLimitInsideARotationStopsItExactlyThere) {
+  const Particle cube = load_particle("box:x=1,y=1,z=1", 1.0);
+  for (Integrator integrator : {Integrator::paper, Integrator::adaptive}) {
+    SettleParams p;
+    p.integrator = integrator;
+    p.dt = 1e-3;
+    p.max_time = 0.0105;
+    const SettleResult r = settle(cube, p, Quat(Eigen::AngleAxisd(0.3, Vec3::UnitX())));
+    EXPECT_EQ(r.status, Status::max_time) << to_string(integrator);
+    EXPECT_EQ(r.time, 0.0105) << to_string(integrator);
+    if (integrator == Integrator::paper) {
+      EXPECT_EQ(r.steps, 11);
+    }
+  }
+}
+
 // run(observer, sample_dt) reports the initial state, every multiple of sample_dt before the end, and the
 // end.
 TEST(SampledRun, ReportsEveryMultipleOfTheIntervalAndTheEnd) {
