@@ -48,7 +48,8 @@ void print_summary(const Particle& particle, const SettleParams& params, const S
             << "status          " << to_string(r.status) << " after " << num(r.time) << " (" << r.steps
             << " steps of dt " << num(r.dt) << ")\n";
   if (r.stable_time >= 0)
-    std::cout << "stable          at " << num(r.stable_time) << " (the paper's stability test, §2.4: its run ends here)\n";
+    std::cout << "stable          at " << num(r.stable_time)
+              << " (the paper's stability test, §2.4: its run ends here)\n";
   if (r.status == Status::rest) {
     std::cout << "rests on        " << to_string(r.rest) << " (hull face " << r.rest_face << ", "
               << r.contact_points.size() << " support points)\n"

@@ -13,9 +13,10 @@
 namespace repose {
 
 // The hull vertices at most `level` above the wall at orientation `qq` about the current support, in `out`
-// (in index order if `sorted`: the order of a contact list matters to its fit's round-off and to ties): a walk from the lowest vertex over the hull's edge graph (a linear function's sublevel sets on a
-// convex polytope are connected), so the cost is the set and its border. The walk runs 1e-12·L beyond
-// `level` and the exact test (the same arithmetic as heights()) picks the members.
+// (in index order if `sorted`: the order of a contact list matters to its fit's round-off and to ties): a
+// walk from the lowest vertex over the hull's edge graph (a linear function's sublevel sets on a convex
+// polytope are connected), so the cost is the set and its border. The walk runs 1e-12·L beyond `level` and
+// the exact test (the same arithmetic as heights()) picks the members.
 void Settler::Impl::vertices_below(const Quat& qq, double level, std::vector<int>& out, bool sorted) {
   const Vec3 r3 = qq.toRotationMatrix().row(2).transpose();
   const Vec3 down = -r3;

@@ -68,7 +68,8 @@ void expect_same_runs(const char* spec, std::uint64_t seed, int n, double tolera
                         << ", well-conditioned at 1e-6 rad";
   }
   std::printf(
-      "%s: largest relative difference of the time to rest %.3g, of the paper's end (× the time to rest) %.3g; "
+      "%s: largest relative difference of the time to rest %.3g, of the paper's end (× the time to rest) "
+      "%.3g; "
       "%d ill-conditioned drops excused\n",
       spec, worst, worst_stable, excused);
 }
@@ -123,7 +124,8 @@ TEST(Convergence, ABriefPassOfTheStabilityTestIsFound) {
     const Quat q = drop_orientation(2, drop);
     const SettleResult a = settle(grain, coarse, q), b = settle(grain, fine, q);
     ASSERT_GT(b.stable_time, 0) << "drop " << drop;
-    std::printf("drop %d: the paper's end %.12g, %.12g\n", static_cast<int>(drop), a.stable_time, b.stable_time);
+    std::printf("drop %d: the paper's end %.12g, %.12g\n", static_cast<int>(drop), a.stable_time,
+                b.stable_time);
     EXPECT_NEAR(a.stable_time, b.stable_time, 1e-7 * b.stable_time) << "drop " << drop;
     EXPECT_NEAR(a.time, b.time, 1e-7 * b.time) << "drop " << drop;
   }

@@ -34,8 +34,7 @@ TEST_P(PaperEnd, CubeTippingOffItsEdgeIsStableWhenItsFaceEntersTheBand) {
     const SettleResult r = settle(cube, params, q);
     ASSERT_EQ(r.status, Status::rest);
     const double theta = std::asin(params.contact_threshold * cube.length);
-    const double expected =
-        pendulum::undamped_tip_time(inertia, kG * d, delta, std::numbers::pi / 4 - theta);
+    const double expected = pendulum::undamped_tip_time(inertia, kG * d, delta, std::numbers::pi / 4 - theta);
     const double tol = 5e-7;
     EXPECT_NEAR(r.stable_time, expected, tol * expected) << "delta " << delta;
     // The paper stops there; repose finishes the rotation onto the face, later.
