@@ -189,6 +189,11 @@ TEST(Ensemble, WilsonIntervalMatchesPublishedValues) {
   EXPECT_NEAR(c[0], 1 - 0.2775, 5e-5);
   EXPECT_NEAR(c[0], 0.722467200137110747, 1e-12 * c[0]);
   EXPECT_EQ(c[1], 1.0);
+  // A probability bound never leaves [0, 1], even where round-off would take it out: n − 1 of n = 10^15 at
+  // z = 10 evaluates to 1 + 2^-52 before the clamp (checked in double precision by the same formula).
+  const auto d = wilson_interval(999'999'999'999'999, 1'000'000'000'000'000, 10.0);
+  EXPECT_LE(d[1], 1.0);
+  EXPECT_GT(d[1], 1.0 - 1e-12);
 }
 
 TEST(Ensemble, RejectsBadOptions) {
