@@ -146,4 +146,24 @@ TEST(PosesStudyFile, AMergeReportsTheLargestThreadCount) {
   EXPECT_EQ(merge_studies(two, one).threads, 2);
 }
 
+// Results whose rest-pose catalogues differ do not merge, even with as many poses (a pose's counts are only
+// comparable if it groups the same hull faces): the faces of one pose swapped for another's.
+TEST(PosesStudyFile, AMergeRefusesAnotherCatalogueOfTheSameSize) {
+  const Particle particle = load_particle("box:x=1,y=2,z=3", 1.0);
+  const RestLandscape landscape = compute_rest_landscape(particle);
+  PosesStudy one = prepare_study(particle, landscape, StudySettings{});
+  one.tally.ranges = {{0, 10}};
+  PosesStudy two = one;
+  two.tally.ranges = {{10, 20}};
+  ASSERT_GE(two.catalog.poses.size(), 2u);
+  ASSERT_NE(two.catalog.poses[0].faces, two.catalog.poses[1].faces);
+  std::swap(two.catalog.poses[0].faces, two.catalog.poses[1].faces);
+  try {
+    merge_studies(one, two);
+    ADD_FAILURE() << "catalogues with other faces were merged";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("rest-pose catalogues"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
