@@ -55,17 +55,20 @@ double Settler::Impl::smallest_moment() const {
   return eigen.eigenvalues()(0);
 }
 
-double Settler::Impl::arc_bound(double h) const {
+std::array<double, 2> Settler::Impl::rate_coefficients() const {
   const double k0 = kinetic_energy() + 10 * params.tolerance * body.mass * params.gravity * length;
-  const double b = 2 * body.mass * params.gravity * support.body.norm() / min_moment;
-  return std::sqrt(2 * k0 / min_moment) * h + 0.25 * b * h * h;
+  return {2 * k0 / min_moment, 2 * body.mass * params.gravity * support.body.norm() / min_moment};
+}
+
+double Settler::Impl::arc_bound(double h) const {
+  const auto [a, b] = rate_coefficients();
+  return std::sqrt(a) * h + 0.25 * b * h * h;
 }
 
 // A bound of |ω| over the next time h (the same energy argument): sqrt(a + b·θ(h)).
 double Settler::Impl::rate_bound(double h) const {
-  const double k0 = kinetic_energy() + 10 * params.tolerance * body.mass * params.gravity * length;
-  const double b = 2 * body.mass * params.gravity * support.body.norm() / min_moment;
-  return std::sqrt(2 * k0 / min_moment + b * arc_bound(h));
+  const auto [a, b] = rate_coefficients();
+  return std::sqrt(a + b * arc_bound(h));
 }
 
 // One adaptive step, or the part of it before its first event, then the contact update at its end. The

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <optional>
@@ -138,8 +139,9 @@ struct Settler::Impl {
   void vertices_below(const Quat& qq, double level, std::vector<int>& out, bool sorted);  // adaptive_step.cpp
   double lowest_height();                                                                 // adaptive_step.cpp
   double smallest_moment() const;                                                         // adaptive_step.cpp
-  double arc_bound(double h) const;                                                       // adaptive_step.cpp
-  double rate_bound(double h) const;                                                      // adaptive_step.cpp
+  std::array<double, 2> rate_coefficients() const;  // |ω|² ≤ a + b·θ after turning by θ   adaptive_step.cpp
+  double arc_bound(double h) const;                 // adaptive_step.cpp
+  double rate_bound(double h) const;                // adaptive_step.cpp
 
   // ---- free fall (fall.cpp)
   void fall_step();
