@@ -186,8 +186,14 @@ PosesStudy parse_poses_json(const std::string& text, const std::string& name) {
     s.smooth = particle.at("smooth").get<bool>();
     s.tally.method = parse_pose_method(j.at("method").get<std::string>());
     s.tally.seed = whole(j.at("seed")).get<std::uint64_t>();
-    for (const json& r : j.at("drop_ranges"))
-      s.tally.ranges.push_back({whole(r.at(0)).get<std::uint64_t>(), whole(r.at(1)).get<std::uint64_t>()});
+    for (const json& r : j.at("drop_ranges")) {
+      const DropRange range{whole(r.at(0)).get<std::uint64_t>(), whole(r.at(1)).get<std::uint64_t>()};
+      // A drop range [begin, end) holds at least one drop (a run of no drops writes no range).
+      if (range.begin >= range.end)
+        throw Error(name + ": drop range [" + std::to_string(range.begin) + ", " + std::to_string(range.end) +
+                    ") is empty or reversed");
+      s.tally.ranges.push_back(range);
+    }
     const json& set = j.at("settings");
     SettleParams& p = s.params;
     p.gravity = set.at("gravity").get<double>();

@@ -19,6 +19,7 @@
 #include "../support/equilibrium_oracle.hpp"
 #include "landscape_reference.hpp"
 #include "repose/error.hpp"
+#include "repose/geometry/hull.hpp"
 #include "repose/model/particle.hpp"
 
 namespace repose {
@@ -191,6 +192,50 @@ TEST(RestLandscape, RejectsBadInput) {
   EXPECT_THROW(quasi_static_rest_face(box, land, Vec3(NAN, 0, 1)), Error);
   EXPECT_THROW(quasi_static_rest_face(tet, land, Vec3::UnitZ()), Error);
   EXPECT_THROW(quasi_static_rest_face(box, RestLandscape{}, Vec3::UnitZ()), Error);
+}
+
+TEST(RestLandscape, RejectsAHullVertexWithTwoFansOfFaces) {
+  // A Particle is a public struct, so a caller can hand over a hull that is not convex: here two tetrahedra
+  // touching at one vertex (a bowtie). Every edge still has two faces, but the faces around the shared
+  // vertex form two separate fans, so it has no single vertex region; the landscape must say so rather
+  // than build a region from one fan.
+  const Vec3 shared(0.1, 0.2, 0.3);
+  std::vector<Vec3> a = {shared, Vec3(1, 1, 0), Vec3(1, -1, 0.2), Vec3(1.5, 0, 1)};
+  std::vector<Vec3> b;
+  for (const Vec3& v : a) b.push_back(2 * shared - v);  // the point mirror through the shared vertex
+  const ConvexHull ha = compute_convex_hull(a);
+  const ConvexHull hb = compute_convex_hull(b);
+  ConvexHull bowtie = ha;
+  const auto shared_in = [&](const ConvexHull& h) {
+    for (std::size_t i = 0; i < h.vertices.size(); ++i)
+      if ((h.vertices[i] - shared).norm() < 1e-12) return static_cast<int>(i);
+    return -1;
+  };
+  const int sa = shared_in(ha), sb = shared_in(hb);
+  ASSERT_GE(sa, 0);
+  ASSERT_GE(sb, 0);
+  std::vector<int> index_b(hb.vertices.size());
+  for (std::size_t i = 0; i < hb.vertices.size(); ++i) {
+    if (static_cast<int>(i) == sb) {
+      index_b[i] = sa;
+    } else {
+      index_b[i] = static_cast<int>(bowtie.vertices.size());
+      bowtie.vertices.push_back(hb.vertices[i]);
+    }
+  }
+  for (HullFace f : hb.faces) {
+    for (int& k : f.loop) k = index_b[static_cast<std::size_t>(k)];
+    bowtie.faces.push_back(f);
+  }
+  Particle particle = load_particle("tetrahedron:edge=1", 1.0);
+  particle.hull = bowtie;
+  particle.face_stability_margin.assign(bowtie.faces.size(), 1.0);
+  try {
+    compute_rest_landscape(particle);
+    ADD_FAILURE() << "a hull vertex with two fans of faces was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("do not form one fan"), std::string::npos) << e.what();
+  }
 }
 
 // Large meshes: a 9,680-triangle grain (326 hull vertices) and ellipsoid (all 4,842 vertices on the hull,

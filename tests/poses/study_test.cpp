@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "repose/error.hpp"
@@ -62,6 +63,29 @@ TEST(PosesStudyFile, PoseIndexOnePastTheEndIsRejected) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("bad.json: pose index 6 out of range"), std::string::npos)
         << e.what();
+  }
+}
+
+// A drop range holds at least one drop: an empty or reversed one in a file (edited by hand) is refused by
+// name, before it could make `n` wrap around or let a merge's overlap test pass ranges in either order.
+TEST(PosesStudyFile, EmptyOrReversedDropRangesAreRejected) {
+  const Particle particle = load_particle("box:x=1,y=2,z=3", 1.0);
+  const RestLandscape landscape = compute_rest_landscape(particle);
+  StudySettings settings;
+  settings.method = PoseMethod::quasi_static;
+  const std::string text = poses_json(prepare_study(particle, landscape, settings));
+  ASSERT_NE(text.find("\"drop_ranges\": []"), std::string::npos);
+  for (const auto& [ranges, shown] : std::vector<std::pair<std::string, std::string>>{
+           {"[[5, 5]]", "[5, 5)"}, {"[[10, 5]]", "[10, 5)"}, {"[[0, 3], [7, 7]]", "[7, 7)"}}) {
+    const std::string bad = replace_once(text, "\"drop_ranges\": []", "\"drop_ranges\": " + ranges);
+    try {
+      parse_poses_json(bad, "edited.json");
+      ADD_FAILURE() << ranges << " was accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("edited.json: drop range " + shown + " is empty or reversed"),
+                std::string::npos)
+          << e.what();
+    }
   }
 }
 
