@@ -103,5 +103,21 @@ TEST(SampledRun, ReportsEveryMultipleOfTheIntervalAndTheEnd) {
   EXPECT_THROW(settle(particle, params, q, {}, -1.0), Error);
 }
 
+// The starting orientation is any quaternion of norm ≥ 1e-12 (Settler's documented floor), normalised: 2·q
+// runs exactly as q (scaling by 2 is exact), and the identity at norm 1e-12 exactly as the identity. Below
+// the floor, zero and non-finite quaternions are refused.
+TEST(StartingOrientation, IsNormalisedDownToItsFloorAndRefusedBelowIt) {
+  const Particle particle = load_particle("tetrahedron:edge=1", 1000.0);
+  const SettleParams params;
+  const Quat q = parse_orientation("axis-angle:1,0.3,0,2.5");
+  expect_same_result(settle(particle, params, q), settle(particle, params, Quat(q.coeffs() * 2)));
+  const SettleResult identity = settle(particle, params, Quat::Identity());
+  expect_same_result(identity, settle(particle, params, Quat(1e-12, 0, 0, 0)));
+  EXPECT_THROW(settle(particle, params, Quat(0.999e-12, 0, 0, 0)), Error);
+  EXPECT_THROW(settle(particle, params, Quat(0, 0, 0, 0)), Error);
+  EXPECT_THROW(settle(particle, params, Quat(NAN, 0, 0, 1)), Error);
+  EXPECT_THROW(settle(particle, params, Quat(INFINITY, 0, 0, 1)), Error);
+}
+
 }  // namespace
 }  // namespace repose

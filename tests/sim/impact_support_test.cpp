@@ -146,9 +146,9 @@ TEST(ImpactSupport, APointRisingSlowerThanTheVelocityToleranceOrPulledBackAtOnce
   const Touch p = touch(0, 0, 0, 0, com), t = touch(1, 0, 1, 0, com);
   const Support hinge{p.world, p.body, true, Vec3(1, 0, 0)};
   const double g = body.gravity, a_z = -0.5 * g / 1.35;
-  auto separates = [&](double v_z, double dt) {
+  auto separates = [&](double v_z, double dt, double length = 1.0) {
     const Vec3 spin(1.35 * v_z / 0.1, 0, 0);
-    const Impact impact{body, Quat::Identity(), com, spin, Vec3::Zero(), 1.0, 1e-9, dt};
+    const Impact impact{body, Quat::Identity(), com, spin, Vec3::Zero(), length, 1e-9, dt};
     return others_separate(impact, {p, t}, hinge);
   };
   const double slow = 1e-7 * std::sqrt(g);   // 100× the velocity tolerance
@@ -157,6 +157,11 @@ TEST(ImpactSupport, APointRisingSlowerThanTheVelocityToleranceOrPulledBackAtOnce
   EXPECT_FALSE(separates(slow, 20 * back));  // pulled back within 2·back, a tenth of this window
   EXPECT_FALSE(separates(1e-10 * std::sqrt(g), 1e-15));  // below the velocity tolerance, a_z down
   EXPECT_FALSE(separates(-slow, 1e-15));                 // moving down
+  // The tolerance is a speed, 1e-9·sqrt(g·L): for L = 100 (the rule reads L only there) it is
+  // 1e-8·sqrt(g), so a point rising at 3e-9·sqrt(g) still does not separate; for L = 1e-2 it is
+  // 1e-10·sqrt(g), so the same point does (it stays up far longer than a tenth of this window).
+  EXPECT_FALSE(separates(3e-9 * std::sqrt(g), 1e-15, 100.0));
+  EXPECT_TRUE(separates(3e-9 * std::sqrt(g), 1e-15, 1e-2));
 }
 
 TEST(ImpactSupport, ASmoothParticlePivotsOnItsLowestNewTouch) {
