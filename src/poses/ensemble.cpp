@@ -45,6 +45,7 @@ DropOutcome run_dynamic_drop(const Particle& particle, const RestLandscape& land
   const double margin = 1e-6 * particle.length;
   const double highest_barrier = highest_barrier_of(catalog);
   DropOutcome out;
+  int lowest_vertex = 0;  // where the check's walk to the lowest hull vertex starts (the last one found)
   // The check (a walk on the landscape from the current direction) costs less than a step now that a drop
   // takes ~20 steps, so it is made before the first step (a drop released below the barrier of the pose it
   // rolls into is decided at once) and after every step.
@@ -55,7 +56,7 @@ DropOutcome run_dynamic_drop(const Particle& particle, const RestLandscape& land
     const double level = (sample.kinetic_energy + sample.potential_energy) / weight;
     if (!(level < highest_barrier - margin)) return false;
     const Vec3 down = sample.orientation.conjugate() * kDown;
-    const int pose = catalog.face_pose[quasi_static_rest_face(particle, landscape, down)];
+    const int pose = catalog.face_pose[quasi_static_rest_face(particle, landscape, down, lowest_vertex)];
     if (!(level < catalog.poses[pose].barrier - margin)) return false;
     out.pose = pose;
     out.status = Status::rest;

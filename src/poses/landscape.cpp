@@ -173,7 +173,10 @@ RestLandscape compute_rest_landscape(const Particle& particle) {
   return land;
 }
 
-int quasi_static_rest_face(const Particle& particle, const RestLandscape& landscape, const Vec3& down) {
+namespace {
+
+// The landscape's Gauss map, after checking the direction and that the landscape is `particle`'s.
+const GaussMap& checked_map(const Particle& particle, const RestLandscape& landscape, const Vec3& down) {
   if (!down.allFinite() || down.norm() == 0) {
     throw Error("quasi_static_rest_face: the down direction must be finite and nonzero");
   }
@@ -183,19 +186,42 @@ int quasi_static_rest_face(const Particle& particle, const RestLandscape& landsc
       landscape.face_rest.size() != particle.hull.faces.size()) {
     throw Error("quasi_static_rest_face: the landscape was not computed for " + particle.name);
   }
-  const Vec3 d = down.normalized();
-  const int v = particle.hull.support_vertex(d);
+  return *g;
+}
+
+// Rolling from unit direction d, which lies in the region of hull vertex v (v is lowest along d).
+int rest_face_from(const GaussMap& g, const RestLandscape& landscape, const Vec3& d, int v) {
   // On a face normal (a corner of v's region, within round-off) the face decides where to tip, not v.
-  const Region& r = g->regions[static_cast<std::size_t>(v)];
+  const Region& r = g.regions[static_cast<std::size_t>(v)];
   for (std::size_t i = 0; i < r.corners.size(); ++i) {
     if ((d - r.corners[i]).norm() < kCornerTol) {
       return landscape.face_rest[static_cast<std::size_t>(r.faces[i])];
     }
   }
-  const RollEnd end = roll(*g, v, d);
+  const RollEnd end = roll(g, v, d);
   // A balance reached directly leaves on the side of d itself; a face reached goes on along its route.
   const int face = end.face >= 0 ? end.face : end.side[end.unstable.dot(d) > 0 ? 1 : 0];
-  return rest_for(*g, face, d);
+  return rest_for(g, face, d);
+}
+
+}  // namespace
+
+int quasi_static_rest_face(const Particle& particle, const RestLandscape& landscape, const Vec3& down) {
+  const GaussMap& g = checked_map(particle, landscape, down);
+  const Vec3 d = down.normalized();
+  return rest_face_from(g, landscape, d, particle.hull.support_vertex(d));
+}
+
+int quasi_static_rest_face(const Particle& particle, const RestLandscape& landscape, const Vec3& down,
+                           int& start_vertex) {
+  const GaussMap& g = checked_map(particle, landscape, down);
+  if (start_vertex < 0 || start_vertex >= static_cast<int>(particle.hull.vertices.size())) {
+    throw Error("quasi_static_rest_face: start vertex " + std::to_string(start_vertex) +
+                " is not a hull vertex");
+  }
+  const Vec3 d = down.normalized();
+  start_vertex = particle.hull.support_vertex_from(d, start_vertex);
+  return rest_face_from(g, landscape, d, start_vertex);
 }
 
 }  // namespace repose

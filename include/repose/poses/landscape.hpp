@@ -81,4 +81,12 @@ RestLandscape compute_rest_landscape(const Particle& particle);
 /// particle.
 int quasi_static_rest_face(const Particle& particle, const RestLandscape& landscape, const Vec3& down);
 
+/// The same, for a sequence of nearby directions (a drop's orientation after each step): the hull vertex
+/// lowest along `down` is found by a walk on the hull's edges from `start_vertex` (a hull vertex index, any
+/// at first) instead of a scan of every vertex, and `start_vertex` is set to it for the next call. Where
+/// several vertices are exactly lowest (`down` exactly on an edge's arc of the Gauss map, a set of measure
+/// zero) the walk may start rolling from another of them than the scan would.
+int quasi_static_rest_face(const Particle& particle, const RestLandscape& landscape, const Vec3& down,
+                           int& start_vertex);
+
 }  // namespace repose
