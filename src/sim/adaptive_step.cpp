@@ -30,6 +30,18 @@ void Settler::Impl::vertices_below(const Quat& qq, double level, std::vector<int
   if (sorted) std::sort(out.begin(), out.end());
 }
 
+// The same set, sorted, when it is known to lie within `among` (a superset): the members are picked from it
+// by the same test, with no walk. The walk to the lowest vertex is still made (later walks start there).
+void Settler::Impl::vertices_below_among(const Quat& qq, double level, const std::vector<int>& among,
+                                         std::vector<int>& out) {
+  const Vec3 r3 = qq.toRotationMatrix().row(2).transpose();
+  lowest_vertex = particle.hull.support_vertex_from(-r3, lowest_vertex);
+  out.clear();
+  for (int k : among)
+    if (support.world.z() + r3.dot(particle.hull.vertices[k] - support.body) <= level) out.push_back(k);
+  std::sort(out.begin(), out.end());
+}
+
 // The height of the lowest hull vertex at orientation q (a walk downhill from the last lowest vertex).
 double Settler::Impl::lowest_height() {
   const Vec3 r3 = q.toRotationMatrix().row(2).transpose();
@@ -260,7 +272,10 @@ Settler::Impl::Decision Settler::Impl::decision_at(const Quat& qq) {
   // a drop, and only the decisions they change matter): the contact set is the one at this pose.
   const bool own_set = band_crossings_in_decisions();
   if (own_set) {
-    vertices_below(qq, band + touch_tol, decision_set, true);
+    // Inside a step every vertex in the band was, at the step's start, within band + touch_tol + arc·r of
+    // the wall (arc: the angle the step can sweep; r its distance from the pivot): among the step's event
+    // candidates, which begin_adaptive_step collected to that level.
+    vertices_below_among(qq, band + touch_tol, event_candidates, decision_set);
     contact.swap(decision_set);
   }
   contact_points.clear();
