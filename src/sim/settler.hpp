@@ -3,6 +3,7 @@
 //   fall.cpp            the free fall (closed form) and the first touch
 //   paper_step.cpp      the paper's fixed step with bisection of events
 //   adaptive_step.cpp   the adaptive integrator's steps, its events on the dense output, vertex walks
+//   decisions.cpp       the contact decisions at any instant of a step, and where they change
 //   contact_update.cpp  the contact set, Algorithm 1, the paper's stability test, the support's choice
 //   rest.cpp            static equilibrium on touching points, the flush rest, edge balances
 // The Particle is shared read-only; an Impl is one run's state (MuJoCo's mjModel / mjData split).
@@ -187,10 +188,10 @@ struct Settler::Impl {
     bool hold = false, stable = false, line_holds = false;
     bool operator==(const Decision&) const = default;
   };
-  Decision decision_at(const Quat& qq);
-  Decision cached_decision;         // the decisions at the current step's start, if decision_cached
-  bool decision_cached = false;     // (set when the last update changed nothing they depend on)
-  bool end_decision_known = false;  // the last step ended without an event, its end decisions known
+  Decision decision_at(const Quat& qq);  // decisions.cpp, as the three below
+  Decision cached_decision;              // the decisions at the current step's start, if decision_cached
+  bool decision_cached = false;          // (set when the last update changed nothing they depend on)
+  bool end_decision_known = false;       // the last step ended without an event, its end decisions known
   std::vector<int> decision_contact, decision_touching;  // scratch: the sets before an update
   std::vector<int> decision_set;                         // scratch: the contact set at a decision's pose
   void locate_decision_change(double t0, double t_end, std::span<const double> inner);
