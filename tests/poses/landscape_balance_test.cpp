@@ -3,8 +3,11 @@
 // Round-off as in landscape_test.cpp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <iostream>
+#include <optional>
 #include <random>
 #include <string>
 #include <utility>
@@ -299,6 +302,40 @@ TEST(RestLandscape, CentreOfMassAboveAFaceCorner) {
   EXPECT_GT(balanced, 0);  // the degenerate corner is really visited
   std::cout << "corner tetrahedron: " << balanced << "/" << samples << " directions end balanced on A, "
             << agree << " agree\n";
+}
+
+// Numbering the vertices otherwise changes nothing: every one of the 24 orders of the corner tetrahedron's
+// vertices (above: the centre of mass straight above A, A's apex snapped onto a corner of its region, which
+// is corner 0 of that region for some orders) gives the same basins, face by face (found by their normals),
+// to round-off (1e-12, as at the top), and the same rests.
+TEST(RestLandscape, DoesNotDependOnHowTheVerticesAreNumbered) {
+  const double h = 0.8;
+  const std::vector<Vec3> corners = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(-1, -1, h)};
+  const std::vector<std::array<int, 3>> triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+  std::array<int, 4> order = {0, 1, 2, 3};  // order[i]: the position of corner i in the mesh
+  std::vector<double> reference;            // per face of the first particle
+  std::optional<Particle> first;
+  int orders = 0;
+  do {
+    TriangleMesh mesh;
+    mesh.vertices.resize(4);
+    for (int i = 0; i < 4; ++i) mesh.vertices[static_cast<std::size_t>(order[i])] = corners[i];
+    for (const auto& tri : triangles) mesh.triangles.push_back({order[tri[0]], order[tri[1]], order[tri[2]]});
+    const Particle particle = make_particle(mesh, "corner tetrahedron", 1.0);
+    const RestLandscape land = compute_rest_landscape(particle);
+    if (!first) {
+      first = particle;
+      reference = land.basin_probability;
+    }
+    ASSERT_EQ(particle.hull.faces.size(), first->hull.faces.size());
+    for (std::size_t f = 0; f < first->hull.faces.size(); ++f) {
+      const int g = face_with_normal(particle, first->hull.faces[f].normal);
+      EXPECT_NEAR(land.basin_probability[static_cast<std::size_t>(g)], reference[f], kTol)
+          << "order " << orders << " face " << f;
+    }
+    ++orders;
+  } while (std::next_permutation(order.begin(), order.end()));
+  EXPECT_EQ(orders, 24);
 }
 
 }  // namespace

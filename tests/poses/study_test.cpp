@@ -156,6 +156,14 @@ TEST(PosesStudyFile, CsvAndTableGiveEachPoseItsWilsonInterval) {
   s.catalog.poses[2].quasi_static_probability = 1e-5;
   s.catalog.poses[3].quasi_static_probability = 0.5e-4;
   EXPECT_NE(poses_table(s).find("(2 rarer poses with no drops"), std::string::npos) << poses_table(s);
+  // The last line: the run's time and rate, n / seconds (0 when no time was measured).
+  s.tally.seconds = 0.5;
+  s.threads = 2;
+  EXPECT_NE(poses_table(s).find("time       0.500 s, 200.0 drops/s on 2 threads"), std::string::npos)
+      << poses_table(s);
+  s.tally.seconds = 0;
+  EXPECT_NE(poses_table(s).find("time       0.000 s, 0.0 drops/s on 2 threads"), std::string::npos)
+      << poses_table(s);
 }
 
 // A merged result reports the most threads any of its parts ran on, whichever order they are merged in.
