@@ -15,6 +15,21 @@ namespace {
 // The unit square, counter-clockwise.
 const std::vector<Vec2> kSquare = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
 
+// The downward ray from the centre of mass that picks the face a particle rests on (rest.cpp): it hits the
+// unit right triangle in z = 0 from above inside and on its edges (1e-12 of the barycentric coordinates),
+// misses it outside, behind the origin, and when it runs parallel to the plane (even through the triangle).
+TEST(RayHitsTriangle, InsideAndOnTheEdgesButNotOutsideBehindOrParallel) {
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), down(0, 0, -1);
+  EXPECT_TRUE(ray_hits_triangle(Vec3(0.25, 0.25, 1), down, a, b, c));
+  EXPECT_TRUE(ray_hits_triangle(Vec3(0.5, 0.5, 1), down, a, b, c));  // on the hypotenuse
+  EXPECT_TRUE(ray_hits_triangle(Vec3(0, 0, 1), down, a, b, c));      // on a corner
+  EXPECT_FALSE(ray_hits_triangle(Vec3(0.5, 0.5 + 1e-9, 1), down, a, b, c));
+  EXPECT_FALSE(ray_hits_triangle(Vec3(-1e-9, 0.5, 1), down, a, b, c));
+  EXPECT_FALSE(ray_hits_triangle(Vec3(0.25, 0.25, -1), down, a, b, c));          // the triangle is behind it
+  EXPECT_FALSE(ray_hits_triangle(Vec3(-1, 0.25, 0), Vec3(1, 0, 0), a, b, c));    // in the plane, across it
+  EXPECT_FALSE(ray_hits_triangle(Vec3(0.25, 0.25, 1), Vec3(1, 0, 0), a, b, c));  // parallel, above it
+}
+
 TEST(PolygonMargin, InsideTheSquareItIsTheDistanceToTheNearestSide) {
   EXPECT_NEAR(polygon_margin(kSquare, Vec2(0.5, 0.5)), 0.5, 1e-15);
   EXPECT_NEAR(polygon_margin(kSquare, Vec2(0.25, 0.5)), 0.25, 1e-15);
