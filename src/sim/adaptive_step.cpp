@@ -26,7 +26,7 @@ void Settler::Impl::vertices_below(const Quat& qq, double level, std::vector<int
   particle.hull.vertices_at_least(down, -(level + event_tol - base), lowest_vertex, walk_out, walk_visited);
   out.clear();
   for (int k : walk_out)
-    if (support.world.z() + r3.dot(particle.hull.vertices[k] - support.body) <= level) out.push_back(k);
+    if (height_of(r3, k) <= level) out.push_back(k);
   if (sorted) std::sort(out.begin(), out.end());
 }
 
@@ -38,7 +38,7 @@ void Settler::Impl::vertices_below_among(const Quat& qq, double level, const std
   lowest_vertex = particle.hull.support_vertex_from(-r3, lowest_vertex);
   out.clear();
   for (int k : among)
-    if (support.world.z() + r3.dot(particle.hull.vertices[k] - support.body) <= level) out.push_back(k);
+    if (height_of(r3, k) <= level) out.push_back(k);
   std::sort(out.begin(), out.end());
 }
 
@@ -46,7 +46,7 @@ void Settler::Impl::vertices_below_among(const Quat& qq, double level, const std
 double Settler::Impl::lowest_height() {
   const Vec3 r3 = q.toRotationMatrix().row(2).transpose();
   lowest_vertex = particle.hull.support_vertex_from(-r3, lowest_vertex);
-  return support.world.z() + r3.dot(particle.hull.vertices[lowest_vertex] - support.body);
+  return height_of(r3, lowest_vertex);
 }
 
 // A bound of the angle the particle can turn in time h from now about the current support, from energy:

@@ -27,7 +27,7 @@ void Settler::Impl::update_contacts(const Vec3& omega, const Vec3& com_velocity,
     vertices_below(q, contact_level, contact, true);
     const Vec3 r3 = q.toRotationMatrix().row(2).transpose();
     for (int k : contact) {
-      z[k] = support.world.z() + r3.dot(particle.hull.vertices[k] - support.body);
+      z[k] = height_of(r3, k);
       in_contact[k] = 1;
     }
   } else {
@@ -94,7 +94,7 @@ void Settler::Impl::quiet_update() {
   const Vec3 r3 = q.toRotationMatrix().row(2).transpose();
   double lowest = INFINITY;
   for (int k : contact) {
-    z[k] = support.world.z() + r3.dot(particle.hull.vertices[k] - support.body);
+    z[k] = height_of(r3, k);
     lowest = std::min(lowest, z[k]);
   }
   max_penetration = std::max(max_penetration, -lowest);

@@ -149,7 +149,7 @@ bool Settler::Impl::adaptive_event_at(const Quat& qq, const std::vector<int>& ca
   bool left = false;
   pierced = entered = false;
   for (int k : candidates) {
-    const double zk = support.world.z() + r3.dot(particle.hull.vertices[k] - support.body);
+    const double zk = height_of(r3, k);
     pierced = pierced || pierces(k, zk);
     entered = entered || enters_band(k, zk);
     left = left || rises(k, zk);
@@ -163,7 +163,7 @@ double Settler::Impl::event_margin(const Quat& qq, const std::vector<int>& candi
   const Vec3 r3 = qq.toRotationMatrix().row(2).transpose();
   double m = INFINITY;
   for (int k : candidates) {
-    const double zk = support.world.z() + r3.dot(particle.hull.vertices[k] - support.body);
+    const double zk = height_of(r3, k);
     m = std::min({m, zk - pierce_level(k), rise_level(k) - zk});
     if (band_events() && !in_contact[k]) m = std::min(m, zk - band);
   }

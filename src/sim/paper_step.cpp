@@ -12,7 +12,7 @@ bool Settler::Impl::event_at(const Quat& qq, const std::vector<int>& candidates,
   bool event = false;
   pierced = false;
   for (int k : candidates) {
-    const double zk = support.world.z() + r3.dot(particle.hull.vertices[k] - support.body);
+    const double zk = height_of(r3, k);
     pierced = pierced || pierces(k, zk);
     event = event || pierced || enters_band(k, zk);
   }

@@ -163,6 +163,11 @@ struct Settler::Impl {
   // (decision_at), so that they are located where they change a decision.
   bool band_events() const { return !smooth && !finishing; }
   bool band_crossings_in_decisions() const { return adaptive && !smooth && finishing; }
+  // The height above the wall of hull vertex k at the orientation whose rotation matrix has third row r3,
+  // about the current support (the one expression every height test uses, so that they agree to the bit).
+  double height_of(const Vec3& r3, int k) const {
+    return support.world.z() + r3.dot(particle.hull.vertices[static_cast<std::size_t>(k)] - support.body);
+  }
   bool pierces(std::size_t k, double zk) const { return zk < pierce_level(k); }
   bool enters_band(std::size_t k, double zk) const { return band_events() && !in_contact[k] && zk <= band; }
   // The adaptive integrator's events upward: a contact leaving the ε band, a touching point lifting off the
