@@ -232,9 +232,10 @@ bool Settler::Impl::line_is_supported(int o, const Vec3& axis) const {
   if (normal_part.norm() <= 1e-9 * moment.norm()) return true;
   bool ahead = false, behind = false;
   Vec3 lever = Vec3::Zero();
-  for (int k : contact) {
-    const Vec3 d = world_vertex(k) - origin;
-    if (k == o || d.norm() <= touch_tol) continue;
+  // contact_points[i] is world_vertex(contact[i]) at this pose: both callers have just filled them.
+  for (std::size_t i = 0; i < contact.size(); ++i) {
+    const Vec3 d = contact_points[i] - origin;
+    if (contact[i] == o || d.norm() <= touch_tol) continue;
     const double s = d.dot(e);
     ahead = ahead || s > touch_tol;
     behind = behind || s < -touch_tol;

@@ -214,7 +214,7 @@ struct Settler::Impl {
   void set_type(ContactType new_type);
   double stability_margin(const std::vector<Vec3>& contact_points, const Vec2& g) const;
   void choose_support(const sim::LineFit& fit, const Vec2& g, const Vec3& omega, const Vec3& com_velocity);
-  bool line_is_supported(int o, const Vec3& axis) const;
+  bool line_is_supported(int o, const Vec3& axis) const;  // on contact_points, filled for `contact`
   void note_penetration();
   void remember_axis(const Vec3& omega);
   int nearest_touching(const Vec2& p) const;
