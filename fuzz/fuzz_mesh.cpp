@@ -1,17 +1,19 @@
 // libFuzzer harness for one mesh reader. The format is fixed at build time by REPOSE_FUZZ_MESH_EXT (".stl",
-// ".obj", ".ply" or ".off"), so each reader gets its own binary and its own corpus.
+// ".obj", ".ply", ".off" or ".xyz"), so each reader gets its own binary and its own corpus.
 //
-// Oracle: the bytes are rejected with repose::Error, or they give a mesh whose triangle indices are in
-// range; if validate_mesh() accepts it, it is a solid by the harness's own checks (solid_checks.hpp): every
-// vertex finite, closed and consistently wound (each directed edge once, its reverse once), a positive volume
-// computed here by the divergence theorem and equal to the particle's within a round-off bound. The particle
-// built from it has finite mass properties, a centre of mass inside its bounding box, and a convex hull that
-// contains every vertex and the centre of mass. Anything else (another exception, a failed check, a sanitizer
-// report) is a crash.
+// Oracle: the bytes are rejected with repose::Error, or they give a mesh with vertices whose triangle
+// indices are in range (no triangles at all is a point cloud, which validate_mesh() then rejects; every .xyz
+// file is one); if validate_mesh() accepts it, it is a solid by the harness's own checks (solid_checks.hpp):
+// every vertex finite, closed and consistently wound (each directed edge once, its reverse once), a positive
+// volume computed here by the divergence theorem and equal to the particle's within a round-off bound. The
+// particle built from it has finite mass properties, a centre of mass inside its bounding box, and a convex
+// hull that contains every vertex and the centre of mass. Anything else (another exception, a failed check, a
+// sanitizer report) is a crash.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "repose/error.hpp"
 #include "repose/geometry/mesh.hpp"
@@ -44,7 +46,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string name = std::string("fuzz") + REPOSE_FUZZ_MESH_EXT;
   try {
     repose::TriangleMesh mesh = repose::read_mesh_from_memory(bytes, name);
-    require(!mesh.triangles.empty() && indices_in_range(mesh));
+    require(!mesh.vertices.empty() && indices_in_range(mesh));
+    if (std::string_view(REPOSE_FUZZ_MESH_EXT) == ".xyz") require(mesh.triangles.empty());
 
     repose::validate_mesh(mesh, name);
     require(!mesh.triangles.empty() && indices_in_range(mesh));

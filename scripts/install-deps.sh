@@ -4,8 +4,9 @@
 set -euo pipefail
 packages=(
   g++ cmake make pkg-config git
-  libeigen3-dev libboost-dev libcli11-dev nlohmann-json3-dev libqhull-dev libassimp-dev libtbb-dev librandom123-dev
+  libeigen3-dev libboost-dev libcli11-dev nlohmann-json3-dev libqhull-dev libtbb-dev librandom123-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libcgal-dev  # --repair: CGAL Polygon Mesh Processing (header-only; GPL-3+)
   libbullet-dev  # bench/peers: the peer benchmark against Bullet 3.24 (double precision); builds without it too
   libopenmpi-dev openmpi-bin  # the MPI runner (mpirun -np K repose poses); builds without it too
   clang libclang-rt-14-dev  # scripts/fuzz.sh: the clang driver and libFuzzer + sanitizer runtimes

@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "format.hpp"
+#include "mesh_options.hpp"
 #include "repose/io/mesh_io.hpp"
 #include "repose/model/particle.hpp"
 
@@ -15,18 +16,40 @@ namespace {
 struct InfoOptions {
   std::string source;
   double density = 1.0;
+  std::string units = "si";
+  MeshCliOptions mesh;
   bool json = false;
   std::string write_stl;
 };
+
+nlohmann::json repair_json(const RepairReport& r) {
+  return {{"merged_vertices", r.merged_vertices},
+          {"flat_components", r.flat_components},
+          {"input_components", r.input_components},
+          {"kept_components", r.kept_components},
+          {"stitched_edges", r.stitched_edges},
+          {"duplicate_faces", r.duplicate_faces},
+          {"degenerate_faces", r.degenerate_faces},
+          {"non_manifold_vertices", r.non_manifold_vertices},
+          {"flipped_faces", r.flipped_faces},
+          {"holes_filled", r.holes_filled},
+          {"area_added", r.area_added},
+          {"volume_change", r.volume_change},
+          {"notes", r.notes}};
+}
 
 nlohmann::json info_json(const Particle& p, double density) {
   const Aabb box{p.bounds.min + p.input_offset, p.bounds.max + p.input_offset};
   nlohmann::json j;
   j["source"] = p.name;
   j["density"] = density;
+  j["inertia_model"] = to_string(p.options.inertia);
+  j["scale"] = p.options.scale;
+  j["surface_is_hull"] = p.surface_is_hull;
   j["vertices"] = p.mesh.vertices.size();
   j["triangles"] = p.mesh.triangles.size();
   j["volume"] = p.mass.volume;
+  j["area"] = p.mass.area;
   j["mass"] = p.mass.mass;
   j["center_of_mass"] = to_json(p.input_offset);
   j["inertia"] = to_json(p.mass.inertia);
@@ -35,6 +58,13 @@ nlohmann::json info_json(const Particle& p, double density) {
   j["bounding_box"] = {{"min", to_json(box.min)}, {"max", to_json(box.max)}};
   j["characteristic_length"] = p.length;
   j["hull"] = {{"vertices", p.hull.vertices.size()}, {"faces", p.hull.faces.size()}};
+  j["file"] = {{"vertices", p.report.input_vertices},
+               {"triangles", p.report.input_triangles},
+               {"duplicate_vertices", p.report.welded_vertices},
+               {"degenerate_triangles", p.report.degenerate_triangles},
+               {"unused_vertices", p.report.unused_vertices},
+               {"flipped", p.report.flipped}};
+  if (p.repair) j["repair"] = repair_json(*p.repair);
   j["warnings"] = p.report.warnings;
   return j;
 }
@@ -42,12 +72,22 @@ nlohmann::json info_json(const Particle& p, double density) {
 void print_info(const Particle& p, double density) {
   const Aabb box{p.bounds.min + p.input_offset, p.bounds.max + p.input_offset};
   const Mat3 axes = p.mass.principal_axes;
-  std::cout << "particle            " << p.name << "\n"
-            << "surface             " << p.mesh.vertices.size() << " vertices, " << p.mesh.triangles.size()
-            << " triangles\n"
-            << "density             " << num(density) << "\n"
-            << "volume              " << num(p.mass.volume) << "\n"
-            << "mass                " << num(p.mass.mass) << "\n"
+  const bool shell = p.options.inertia == InertiaModel::shell;
+  std::cout << "particle            " << p.name << "\n";
+  if (p.options.scale != 1) std::cout << "scale               " << num(p.options.scale) << "\n";
+  std::cout << "surface             " << p.mesh.vertices.size() << " vertices, " << p.mesh.triangles.size()
+            << " triangles" << (p.surface_is_hull ? " (the convex hull of the file's points)" : "") << "\n"
+            << "inertia model       " << to_string(p.options.inertia)
+            << (shell                                       ? " (mass on the surface)"
+                : p.options.inertia == InertiaModel::convex ? " (the solid convex hull)"
+                                                            : " (the closed solid)")
+            << "\n"
+            << "density             " << num(density) << (shell ? " per unit area" : "") << "\n";
+  if (shell)
+    std::cout << "surface area        " << num(p.mass.area) << "\n";
+  else
+    std::cout << "volume              " << num(p.mass.volume) << "\n";
+  std::cout << "mass                " << num(p.mass.mass) << "\n"
             << "centre of mass      " << vec(p.input_offset) << "\n"
             << "inertia about COM   " << vec(p.mass.inertia.row(0)) << "\n"
             << "                    " << vec(p.mass.inertia.row(1)) << "\n"
@@ -57,9 +97,19 @@ void print_info(const Particle& p, double density) {
             << "                    " << vec(axes.col(1)) << "\n"
             << "                    " << vec(axes.col(2)) << "\n"
             << "bounding box        " << vec(box.min) << " .. " << vec(box.max) << "\n"
-            << "characteristic L    " << num(p.length) << "  (volume-equivalent sphere diameter)\n"
+            << "characteristic L    " << num(p.length) << "  (volume-equivalent sphere diameter"
+            << (p.options.inertia == InertiaModel::exact ? "" : " of the convex hull") << ")\n"
             << "convex hull         " << p.hull.vertices.size() << " vertices, " << p.hull.faces.size()
             << " planar faces\n";
+  if (p.repair) {
+    const RepairReport& r = *p.repair;
+    std::cout << "repair              " << r.holes_filled << " holes filled (" << num(100 * r.area_added)
+              << " % of the area added), " << r.flipped_faces << " faces flipped, " << r.stitched_edges
+              << " edges stitched, " << r.duplicate_faces << " duplicate and " << r.degenerate_faces
+              << " degenerate faces removed, components " << r.input_components << " -> " << r.kept_components
+              << ", volume change " << num(100 * r.volume_change) << " %\n";
+    for (const std::string& n : r.notes) std::cout << "repaired            " << n << "\n";
+  }
   for (const std::string& w : p.report.warnings) std::cout << "warning             " << w << "\n";
 }
 
@@ -69,15 +119,21 @@ Command add_info_command(CLI::App& app) {
   auto opts = std::make_shared<InfoOptions>();
   CLI::App* sub = app.add_subcommand("info", "Mass properties, hull and validation report of a particle");
   sub->add_option("particle", opts->source,
-                  "Mesh file (STL, OBJ, PLY, OFF) or shape spec, e.g. box:x=1,y=2,z=3")
+                  "Mesh file (STL, OBJ, PLY, OFF; XYZ point cloud) or shape spec, e.g. box:x=1,y=2,z=3")
       ->required();
-  sub->add_option("--density", opts->density, "Density, mass per unit volume (default 1)");
+  sub->add_option("--density", opts->density,
+                  "Density, mass per unit volume (per unit area with --inertia shell; default 1)");
+  sub->add_option("--units", opts->units,
+                  "si (m) or cgs (cm): the unit --mesh-units converts to (default si)")
+      ->check(CLI::IsMember({"si", "cgs"}));
+  add_mesh_options(*sub, opts->mesh);
   sub->add_flag("--json", opts->json, "Print JSON instead of text");
   sub->add_option("--write-stl", opts->write_stl,
                   "Also write the validated surface as binary STL (input frame)");
   return {sub, [opts]() {
             check_positive("--density", opts->density);
-            const Particle p = load_particle(opts->source, opts->density);
+            const Particle p =
+                load_particle(opts->source, opts->density, opts->mesh.resolve(opts->units == "cgs"));
             if (!opts->write_stl.empty()) {
               TriangleMesh out = p.mesh;
               for (Vec3& v : out.vertices) v += p.input_offset;

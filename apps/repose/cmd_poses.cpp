@@ -13,6 +13,7 @@
 
 #include "commands.hpp"
 #include "format.hpp"
+#include "mesh_options.hpp"
 #include "physics_options.hpp"
 #include "progress_bar.hpp"
 #include "repose/campaign/campaign.hpp"
@@ -42,6 +43,7 @@ struct PosesOptions {
   std::uint64_t chunk = 0;
   std::string method = "dynamic";
   PhysicsOptions physics;
+  MeshCliOptions mesh;
   double damping_ratio = 0.05;
   double persistence = -1;  // fraction of L; < 0 = automatic
   bool full_settle = false;
@@ -169,7 +171,9 @@ int run_job(const PosesOptions& o, const CLI::App& sub, WorkRunner& runner) {
   const auto resolve = [&] {
     if (bad_options) std::rethrow_exception(bad_options);
     if (!o.out_dir.empty()) ensure_output_directory(o.out_dir);
-    particles = resolve_particles(o.inputs, o.manifest);
+    particles =
+        resolve_particles(o.inputs, o.manifest, o.mesh.resolve(o.physics.unit_system() == UnitSystem::cgs),
+                          o.physics.unit_system() == UnitSystem::cgs);
     if (particles.size() > 1 && o.out_dir.empty())
       throw Error("poses: " + std::to_string(particles.size()) +
                   " particles need --out DIR (one result file per particle and a summary)");
@@ -269,6 +273,7 @@ Command add_poses_command(CLI::App& app) {
       ->check(CLI::IsMember({"dynamic", "quasi-static"}));
   add_physics_options(*sub, o->physics,
                       "Damping coefficient C of Eq 4 (mass*length^2/time); overrides --damping-ratio");
+  add_mesh_options(*sub, o->mesh);
   sub->add_option("--damping-ratio", o->damping_ratio,
                   "Damping as C / (m*sqrt(g*L^3)) (default 0.05; the paper's ellipsoid used 0.063)");
   sub->add_option("--persistence", o->persistence,

@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "format.hpp"
+#include "mesh_options.hpp"
 #include "physics_options.hpp"
 #include "repose/model/orientation.hpp"
 #include "repose/model/particle.hpp"
@@ -23,6 +24,7 @@ struct SettleOptions {
   std::string source;
   std::string orientation = "identity";
   PhysicsOptions physics;
+  MeshCliOptions mesh;
   std::string scenario;
   std::string out_dir;
   std::string vtk_dir;
@@ -73,6 +75,7 @@ void print_summary(const Particle& particle, const SettleParams& params, const S
 struct RunSetup {
   std::string source;
   double density = 1.0;
+  MeshOptions mesh;
   Quat orientation = Quat::Identity();
   SettleParams params;
 };
@@ -96,6 +99,7 @@ RunSetup resolve_setup(const SettleOptions& o, const CLI::App& sub) {
   check_positive("--density", setup.density);
   if (given("--orientation") || o.scenario.empty()) setup.orientation = parse_orientation(o.orientation);
   if (given("--units") || o.scenario.empty()) units = o.physics.units;
+  setup.mesh = o.mesh.resolve(units == "cgs");
   SettleParams& p = setup.params;
   p.gravity = standard_gravity(units == "cgs" ? UnitSystem::cgs : UnitSystem::si);
   const auto take = [&](const char* option, double& field, double value) {
@@ -128,6 +132,7 @@ Command add_settle_command(CLI::App& app) {
   sub->add_option("--orientation", o->orientation,
                   "Initial orientation, body to world: quat:w,x,y,z | axis-angle:x,y,z,radians | identity");
   add_physics_options(*sub, o->physics, "Damping coefficient C of Eq 4 (mass*length^2/time; default 0)");
+  add_mesh_options(*sub, o->mesh);
   sub->add_option("--out", o->out_dir, "Write timeseries.csv and summary.json into this directory");
   sub->add_option("--vtk", o->vtk_dir, "Write ParaView frames (.vtp) and settling.pvd into this directory");
   sub->add_option(
@@ -144,7 +149,7 @@ Command add_settle_command(CLI::App& app) {
             const RunSetup setup = resolve_setup(*o, *sub);
             if (!o->out_dir.empty()) ensure_output_directory(o->out_dir);
             if (!o->vtk_dir.empty()) ensure_output_directory(o->vtk_dir);
-            const Particle particle = load_particle(setup.source, setup.density);
+            const Particle particle = load_particle(setup.source, setup.density, setup.mesh);
 
             // Samples are kept when frames must be spread over a run whose length is known only at its end.
             const bool keep_samples = !o->out_dir.empty() || !o->vtk_dir.empty();

@@ -32,7 +32,7 @@ struct ParticleModel {
 
 std::unique_ptr<ParticleModel> load_model(const CampaignParticle& p, const StudySettings& settings) {
   auto model = std::make_unique<ParticleModel>();
-  model->particle = load_particle(p.source, settings.density);
+  model->particle = load_particle(p.source, settings.density, p.mesh);
   model->landscape = compute_rest_landscape(model->particle);
   model->header = prepare_study(model->particle, model->landscape, settings);
   return model;
@@ -121,12 +121,16 @@ std::vector<PosesStudy> run_campaign(const std::function<std::vector<CampaignPar
         options.chunk ? options.chunk : auto_chunk(options.drops.size(), options.threads);
     items = plan_work(state.remaining, state.cost_per_drop, chunk);
     json j = json::array();
-    for (const CampaignParticle& p : particles) j.push_back({p.name, p.source});
+    for (const CampaignParticle& p : particles)
+      j.push_back({p.name, p.source, p.mesh.scale, to_string(p.mesh.inertia), p.mesh.repair,
+                   p.mesh.largest_component});
     return j.dump();
   });
   if (!runner.is_root())
     for (const json& p : json::parse(list))
-      particles.push_back({p.at(0).get<std::string>(), p.at(1).get<std::string>()});
+      particles.push_back({p.at(0).get<std::string>(), p.at(1).get<std::string>(),
+                           MeshOptions{p.at(2).get<double>(), parse_inertia_model(p.at(3).get<std::string>()),
+                                       p.at(4).get<bool>(), p.at(5).get<bool>()}});
 
   const int threads = options.threads > 0
                           ? options.threads

@@ -31,6 +31,21 @@ Sub subexpressions(double w0, double w1, double w2) {
   return s;
 }
 
+// Principal moments (ascending) and axes of props.inertia, with deterministic signs: the largest component
+// of each axis is positive, and the axes form a proper rotation.
+void set_principal_frame(MassProperties& props) {
+  const Eigen::SelfAdjointEigenSolver<Mat3> solver(props.inertia);
+  props.principal_moments = solver.eigenvalues();
+  Mat3 axes = solver.eigenvectors();
+  for (int j = 0; j < 3; ++j) {
+    Eigen::Index k = 0;
+    axes.col(j).cwiseAbs().maxCoeff(&k);
+    if (axes(k, j) < 0) axes.col(j) = -axes.col(j);
+  }
+  if (axes.determinant() < 0) axes.col(2) = -axes.col(2);
+  props.principal_axes = axes;
+}
+
 }  // namespace
 
 MassProperties compute_mass_properties(const TriangleMesh& mesh, double density) {
@@ -102,18 +117,45 @@ MassProperties compute_mass_properties(const TriangleMesh& mesh, double density)
 
   props.center_of_mass = ref + c;
   props.inertia = inertia;
+  set_principal_frame(props);
+  return props;
+}
 
-  const Eigen::SelfAdjointEigenSolver<Mat3> solver(inertia);
-  props.principal_moments = solver.eigenvalues();  // ascending
-  Mat3 axes = solver.eigenvectors();
-  // Deterministic signs: the largest component of each axis is positive; then make it a proper rotation.
-  for (int j = 0; j < 3; ++j) {
-    Eigen::Index k = 0;
-    axes.col(j).cwiseAbs().maxCoeff(&k);
-    if (axes(k, j) < 0) axes.col(j) = -axes.col(j);
+MassProperties compute_shell_properties(const TriangleMesh& mesh, double areal_density) {
+  if (!(std::isfinite(areal_density) && areal_density > 0)) {
+    std::ostringstream msg;
+    msg << "mass properties: surface density must be a finite positive number, got " << areal_density;
+    throw Error(msg.str());
   }
-  if (axes.determinant() < 0) axes.col(2) = -axes.col(2);
-  props.principal_axes = axes;
+  const Vec3 ref = bounding_box(mesh.vertices).center();
+  // Over a triangle of area A with corners p0, p1, p2 (uniform density): ∫dA = A, ∫p dA = A·s/3 and
+  // ∫p pᵀ dA = A/12·(Σ pₖpₖᵀ + s sᵀ) with s = p0 + p1 + p2 (exact: the integrand is quadratic).
+  double area = 0;
+  Vec3 first = Vec3::Zero();
+  Mat3 second = Mat3::Zero();
+  for (const Triangle& t : mesh.triangles) {
+    const Vec3 p0 = mesh.vertices[static_cast<std::size_t>(t[0])] - ref;
+    const Vec3 p1 = mesh.vertices[static_cast<std::size_t>(t[1])] - ref;
+    const Vec3 p2 = mesh.vertices[static_cast<std::size_t>(t[2])] - ref;
+    const double a = 0.5 * (p1 - p0).cross(p2 - p0).norm();
+    const Vec3 s = p0 + p1 + p2;
+    area += a;
+    first += a / 3.0 * s;
+    second +=
+        a / 12.0 * (p0 * p0.transpose() + p1 * p1.transpose() + p2 * p2.transpose() + s * s.transpose());
+  }
+  MassProperties props;
+  props.area = area;
+  props.mass = areal_density * area;
+  if (!(area > 0)) {
+    props.center_of_mass = ref;
+    return props;
+  }
+  const Vec3 c = first / area;
+  const Mat3 covariance = second - area * c * c.transpose();  // ∫(p − c)(p − c)ᵀ dA
+  props.center_of_mass = ref + c;
+  props.inertia = areal_density * (covariance.trace() * Mat3::Identity() - covariance);
+  set_principal_frame(props);
   return props;
 }
 

@@ -154,59 +154,34 @@ void check_closed_and_oriented(const TriangleMesh& mesh, const std::string& name
   }
   // Non-manifold first: three triangles on one edge usually leave boundary edges around them too.
   if (non_manifold > 0) {
-    throw Error(name + ": non-manifold surface: " + std::to_string(non_manifold) +
-                " edges shared by more than two triangles");
+    throw SurfaceError(name + ": non-manifold surface: " + std::to_string(non_manifold) +
+                       " edges shared by more than two triangles");
   }
   if (boundary > 0) {
-    throw Error(name + ": open surface: " + std::to_string(boundary) +
-                " boundary edges (the mesh must be a closed solid)");
+    throw SurfaceError(name + ": open surface: " + std::to_string(boundary) +
+                       " boundary edges (the mesh must be a closed solid)");
   }
   if (misoriented > 0) {
-    throw Error(name + ": inconsistent winding: " + std::to_string(misoriented) +
-                " edges whose two triangles face opposite ways");
+    throw SurfaceError(name + ": inconsistent winding: " + std::to_string(misoriented) +
+                       " edges whose two triangles face opposite ways");
   }
 }
 
-}  // namespace
-
-MeshReport validate_mesh(TriangleMesh& mesh, const std::string& name) {
+// The common first stage of clean_mesh() and validate_mesh(): `mesh` → `out` welded, without degenerate
+// triangles or unused vertices; `diag` is the used vertices' bounding-box diagonal, `center` its centre.
+MeshReport clean_into(const TriangleMesh& mesh, const std::string& name, TriangleMesh& out, double& diag,
+                      Vec3& center) {
   MeshReport report;
   report.input_vertices = static_cast<int>(mesh.vertices.size());
   report.input_triangles = static_cast<int>(mesh.triangles.size());
-  if (mesh.triangles.empty() || mesh.vertices.empty()) throw Error(name + ": empty mesh (no triangles)");
-  if (mesh.vertices.size() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
-    throw Error(name + ": too many vertices (" + std::to_string(mesh.vertices.size()) + ")");
-  }
+  const Aabb box = check_surface_input(mesh, name);
   const auto n_vertices = static_cast<std::int32_t>(mesh.vertices.size());
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    for (const std::int32_t i : mesh.triangles[t]) {
-      if (i < 0 || i >= n_vertices) {
-        throw Error(name + ": in triangle " + std::to_string(t) + ", vertex index " + std::to_string(i) +
-                    " does not exist (" + std::to_string(n_vertices) + " vertices)");
-      }
-    }
-  }
-  for (std::int32_t v = 0; v < n_vertices; ++v) {
-    if (!mesh.vertices[v].allFinite()) {
-      throw Error(name + ": vertex " + std::to_string(v) + " has a non-finite coordinate");
-    }
-  }
-
   std::vector<bool> used(n_vertices, false);
   for (const Triangle& t : mesh.triangles) {
     for (const std::int32_t i : t) used[i] = true;
   }
-  const Aabb box = used_bounds(mesh.vertices, used);
-  const double diag = box.size().norm();
-  // Also guards the weld grid below, whose cell size is proportional to the diagonal.
-  if (!(diag > 0.0)) throw Error(name + ": zero volume (all vertices coincide)");
-  // Outside this range the tolerances underflow or the volume and inertia (∝ D⁵) overflow; found by
-  // fuzz_shape_spec ("box:x=1e300,y=1e300,z=1e300" made the weld grid's cell index undefined).
-  if (!(diag >= kMinDiagonal && diag <= kMaxDiagonal)) {
-    char shown[32];
-    std::snprintf(shown, sizeof shown, "%.3g", diag);
-    throw Error(name + ": size out of range (bounding-box diagonal " + shown + "; must be in [1e-50, 1e50])");
-  }
+  diag = box.size().norm();
+  center = box.center();
 
   // Weld, then drop triangles that collapsed or have (numerically) no area.
   const std::vector<std::int32_t> rep = weld_map(mesh.vertices, used, box.min, kWeldTolerance * diag);
@@ -242,14 +217,7 @@ MeshReport validate_mesh(TriangleMesh& mesh, const std::string& name) {
   for (Triangle& t : kept) {
     for (std::int32_t& i : t) i = new_index[i];
   }
-  // `mesh` is only replaced once every check has passed.
-  TriangleMesh repaired{std::move(vertices), std::move(kept)};
-
-  check_closed_and_oriented(repaired, name);
-
-  const double volume = signed_volume_about(repaired, box.center());
-  if (std::abs(volume) <= kVolumeTolerance * diag * diag * diag) throw Error(name + ": zero volume");
-
+  out = TriangleMesh{std::move(vertices), std::move(kept)};
   if (report.welded_vertices > 0) {
     report.warnings.push_back("welded " +
                               count_of(report.welded_vertices, "duplicate vertex", "duplicate vertices"));
@@ -263,6 +231,69 @@ MeshReport validate_mesh(TriangleMesh& mesh, const std::string& name) {
     report.warnings.push_back("removed " +
                               count_of(report.unused_vertices, "unused vertex", "unused vertices"));
   }
+  return report;
+}
+
+}  // namespace
+
+Aabb check_surface_input(const TriangleMesh& mesh, const std::string& name) {
+  if (mesh.triangles.empty() || mesh.vertices.empty()) throw Error(name + ": empty mesh (no triangles)");
+  if (mesh.vertices.size() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
+    throw Error(name + ": too many vertices (" + std::to_string(mesh.vertices.size()) + ")");
+  }
+  const auto n_vertices = static_cast<std::int32_t>(mesh.vertices.size());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (const std::int32_t i : mesh.triangles[t]) {
+      if (i < 0 || i >= n_vertices) {
+        throw Error(name + ": in triangle " + std::to_string(t) + ", vertex index " + std::to_string(i) +
+                    " does not exist (" + std::to_string(n_vertices) + " vertices)");
+      }
+    }
+  }
+  for (std::int32_t v = 0; v < n_vertices; ++v) {
+    if (!mesh.vertices[v].allFinite()) {
+      throw Error(name + ": vertex " + std::to_string(v) + " has a non-finite coordinate");
+    }
+  }
+  std::vector<bool> used(n_vertices, false);
+  for (const Triangle& t : mesh.triangles) {
+    for (const std::int32_t i : t) used[i] = true;
+  }
+  const Aabb box = used_bounds(mesh.vertices, used);
+  const double diag = box.size().norm();
+  // Also guards the weld grid, whose cell size is proportional to the diagonal.
+  if (!(diag > 0.0)) throw Error(name + ": zero volume (all vertices coincide)");
+  // Outside this range the tolerances underflow or the volume and inertia (∝ D⁵) overflow; found by
+  // fuzz_shape_spec ("box:x=1e300,y=1e300,z=1e300" made the weld grid's cell index undefined).
+  if (!(diag >= kMinDiagonal && diag <= kMaxDiagonal)) {
+    char shown[32];
+    std::snprintf(shown, sizeof shown, "%.3g", diag);
+    throw Error(name + ": size out of range (bounding-box diagonal " + shown + "; must be in [1e-50, 1e50])");
+  }
+  return box;
+}
+
+MeshReport clean_mesh(TriangleMesh& mesh, const std::string& name) {
+  TriangleMesh out;
+  double diag = 0;
+  Vec3 center;
+  MeshReport report = clean_into(mesh, name, out, diag, center);
+  mesh = std::move(out);
+  return report;
+}
+
+MeshReport validate_mesh(TriangleMesh& mesh, const std::string& name) {
+  // `mesh` is only replaced once every check has passed.
+  TriangleMesh repaired;
+  double diag = 0;
+  Vec3 center;
+  MeshReport report = clean_into(mesh, name, repaired, diag, center);
+
+  check_closed_and_oriented(repaired, name);
+
+  const double volume = signed_volume_about(repaired, center);
+  if (std::abs(volume) <= kVolumeTolerance * diag * diag * diag) throw Error(name + ": zero volume");
+
   if (volume < 0.0) {
     for (Triangle& t : repaired.triangles) std::swap(t[1], t[2]);
     report.flipped = true;

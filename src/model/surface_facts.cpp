@@ -4,8 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
+#include <tuple>
 #include <utility>
+#include <vector>
 
 namespace repose {
 
@@ -19,27 +20,43 @@ Vec3 triangle_normal(const TriangleMesh& mesh, const Triangle& t) {
 }  // namespace
 
 void compute_dihedral_facts(const TriangleMesh& mesh, double length, double& max_angle, bool& convex) {
-  // Map each directed edge to its triangle; the twin edge is the neighbour across it.
-  std::map<std::pair<int, int>, int> edge_owner;
+  // Each directed edge with its triangle, sorted by undirected edge (then triangle): the twin of lo → hi is
+  // hi → lo, the neighbour across it. A sort, not a map: a 2,000,000-triangle scan has 6,000,000 edges.
+  struct DirectedEdge {
+    int lo, hi, face;
+    bool forward;  // runs lo → hi in its triangle
+  };
+  std::vector<DirectedEdge> edges;
+  edges.reserve(3 * mesh.triangles.size());
   for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f)
-    for (int k = 0; k < 3; ++k) edge_owner[{mesh.triangles[f][k], mesh.triangles[f][(k + 1) % 3]}] = f;
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.triangles[f][k], b = mesh.triangles[f][(k + 1) % 3];
+      edges.push_back({std::min(a, b), std::max(a, b), f, a < b});
+    }
+  std::sort(edges.begin(), edges.end(), [](const DirectedEdge& x, const DirectedEdge& y) {
+    return std::tie(x.lo, x.hi, x.face) < std::tie(y.lo, y.hi, y.face);
+  });
   max_angle = 0;
   convex = true;
   const double reflex_tol = 1e-9 * length;
-  for (const auto& [edge, f] : edge_owner) {
-    if (edge.first > edge.second) continue;  // each undirected edge once
-    const auto twin = edge_owner.find({edge.second, edge.first});
-    if (twin == edge_owner.end()) continue;
-    const Triangle& t1 = mesh.triangles[f];
-    const Triangle& t2 = mesh.triangles[twin->second];
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    int owner = -1, twin = -1;  // the last triangle running lo → hi, and the last running hi → lo
+    for (; j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi; ++j)
+      (edges[j].forward ? owner : twin) = edges[j].face;
+    const int lo = edges[i].lo, hi = edges[i].hi;
+    i = j;
+    if (owner < 0 || twin < 0) continue;  // a border edge (or one wound one way only)
+    const Triangle& t1 = mesh.triangles[owner];
+    const Triangle& t2 = mesh.triangles[twin];
     const Vec3 n1 = triangle_normal(mesh, t1).normalized();
     const Vec3 n2 = triangle_normal(mesh, t2).normalized();
     max_angle = std::max(max_angle, std::acos(std::clamp(n1.dot(n2), -1.0, 1.0)));
     // The neighbour's far vertex lies above this triangle's plane only at a reflex (concave) edge.
     int far = t2[0];
     for (int v : t2)
-      if (v != edge.first && v != edge.second) far = v;
-    if (n1.dot(mesh.vertices[far] - mesh.vertices[edge.first]) > reflex_tol) convex = false;
+      if (v != lo && v != hi) far = v;
+    if (n1.dot(mesh.vertices[far] - mesh.vertices[lo]) > reflex_tol) convex = false;
   }
 }
 
@@ -60,9 +77,16 @@ double face_stability_margin(const ConvexHull& hull, const HullFace& face, const
 std::vector<bool> faces_covered_by_mesh(const TriangleMesh& mesh, const ConvexHull& hull, double length) {
   // Flood-fill from each face's corners across mesh triangles that lie in the face plane: the cost is
   // proportional to the triangles on hull faces, not to mesh size times face count.
-  std::vector<std::vector<int>> triangles_of_vertex(mesh.vertices.size());
-  for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t)
-    for (int v : mesh.triangles[t]) triangles_of_vertex[v].push_back(t);
+  // The triangles of each vertex, in one array (first[v] .. first[v + 1]).
+  std::vector<int> first(mesh.vertices.size() + 1, 0), triangles(3 * mesh.triangles.size());
+  for (const Triangle& tri : mesh.triangles)
+    for (int v : tri) ++first[v + 1];
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) first[v + 1] += first[v];
+  {
+    std::vector<int> fill(first.begin(), first.end() - 1);
+    for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t)
+      for (int v : mesh.triangles[t]) triangles[fill[v]++] = t;
+  }
 
   const double tol = 1e-9 * length;
   std::vector<int> stamp(mesh.triangles.size(), -1);
@@ -76,7 +100,8 @@ std::vector<bool> faces_covered_by_mesh(const TriangleMesh& mesh, const ConvexHu
     while (!stack.empty()) {
       const int v = stack.back();
       stack.pop_back();
-      for (int t : triangles_of_vertex[v]) {
+      for (int i = first[v]; i < first[v + 1]; ++i) {
+        const int t = triangles[i];
         if (stamp[t] == f) continue;
         stamp[t] = f;
         const Triangle& tri = mesh.triangles[t];

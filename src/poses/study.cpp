@@ -85,6 +85,9 @@ PosesStudy prepare_study(const Particle& particle, const RestLandscape& landscap
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(geometry_fingerprint(particle)));
   study.fingerprint = hex;
   study.density = settings.density;
+  study.inertia = to_string(particle.options.inertia);
+  study.scale = particle.options.scale;
+  study.repaired = particle.repair.has_value();
   study.length = particle.length;
   study.mass = particle.mass.mass;
   study.hull_faces = static_cast<int>(particle.hull.faces.size());
@@ -127,6 +130,9 @@ std::string poses_json(const PosesStudy& s) {
   j["particle"] = {{"source", s.source}, {"density", s.density},       {"characteristic_length", s.length},
                    {"mass", s.mass},     {"hull_faces", s.hull_faces}, {"smooth", s.smooth}};
   if (!s.fingerprint.empty()) j["particle"]["fingerprint"] = s.fingerprint;
+  j["particle"]["inertia_model"] = s.inertia;
+  j["particle"]["scale"] = s.scale;
+  j["particle"]["repaired"] = s.repaired;
   j["method"] = to_string(s.tally.method);
   j["seed"] = s.tally.seed;
   j["n"] = n;
@@ -180,6 +186,12 @@ PosesStudy parse_poses_json(const std::string& text, const std::string& name) {
     s.source = particle.at("source").get<std::string>();
     if (particle.contains("fingerprint")) s.fingerprint = particle.at("fingerprint").get<std::string>();
     s.density = particle.at("density").get<double>();
+    // Files that predate these fields were all exact, unscaled and unrepaired.
+    s.inertia = particle.value("inertia_model", std::string("exact"));
+    if (s.inertia != "exact" && s.inertia != "convex" && s.inertia != "shell")
+      throw Error(name + ": unknown inertia model '" + s.inertia + "'");
+    s.scale = particle.value("scale", 1.0);
+    s.repaired = particle.value("repaired", false);
     s.length = particle.at("characteristic_length").get<double>();
     s.mass = particle.at("mass").get<double>();
     s.hull_faces = whole(particle.at("hull_faces")).get<int>();
@@ -259,8 +271,9 @@ void require_same_study(const PosesStudy& a, const PosesStudy& b) {
   const auto require_same = [](bool same, const std::string& what) {
     if (!same) throw Error("cannot merge results for different " + what);
   };
-  require_same(a.source == b.source && a.density == b.density && a.length == b.length && a.mass == b.mass &&
-                   a.hull_faces == b.hull_faces && a.smooth == b.smooth &&
+  require_same(a.source == b.source && a.density == b.density && a.inertia == b.inertia &&
+                   a.scale == b.scale && a.repaired == b.repaired && a.length == b.length &&
+                   a.mass == b.mass && a.hull_faces == b.hull_faces && a.smooth == b.smooth &&
                    (a.fingerprint.empty() || b.fingerprint.empty() || a.fingerprint == b.fingerprint),
                "particles ('" + a.source + "' and '" + b.source + "')");
   if (a.tally.seed != b.tally.seed)

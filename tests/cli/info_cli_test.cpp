@@ -80,12 +80,12 @@ std::vector<BadCase> bad_file_cases() {
       file("NanCoordinateOff", "nan.off", {"non-finite coordinate"}),
       file("NanCoordinateStl", "nan.stl", {"non-finite coordinate"}),
       file("InfCoordinateObj", "inf.obj", {"non-finite coordinate"}),
-      file("OpenSurface", "open_cube.off", {"open surface", "boundary edges"}),
+      file("OpenSurface", "open_cube.off", {"open surface", "boundary edges", "--repair", "--inertia convex"}),
       file("InconsistentWinding", "flipped_face.off", {"inconsistent winding"}),
       file("ZeroVolume", "flat.off", {"zero volume"}),
       file("NonManifold", "nonmanifold.off", {"non-manifold"}),
-      file("NoTriangles", "lines_only.obj", {"no triangles"}),
-      file("UnsupportedFormat", "unknown.xyz", {"unsupported format"}),
+      file("NoTriangles", "lines_only.obj", {"no faces", "--inertia convex"}),
+      file("UnsupportedFormat", "unknown.abc", {"unsupported format"}),
   };
 }
 

@@ -120,7 +120,7 @@ def main():
     write("cube_binary_solid_header.stl", stl_binary(v, tris, header=b"solid cube exported as binary"))
     write("cube_binary_trailing.stl", stl_binary(v, tris) + b"\0" * 7)
     write("cube.obj", obj(v, quads))
-    # Two groups become two assimp meshes that the reader merges.
+    # Two groups ("o" statements): one surface, the statements ignored.
     write(
         "cube_groups.obj",
         "\n".join(["v %s %s %s" % p for p in v] + ["o top"]
@@ -134,7 +134,7 @@ def main():
 
     # Files a reader must reject before (or instead of) allocating what the header claims.
     write("empty.stl", b"")
-    write("unknown.xyz", "0 0 0\n1 0 0\n0 1 0\n")
+    write("unknown.abc", "0 0 0\n1 0 0\n0 1 0\n")
     write("truncated.stl", stl_binary(v, tris)[:-20])
     # 2^31 * 50 overflows 32 bits to 0, so a naive size check sees an 84-byte file as consistent.
     write("huge_count.stl", stl_binary(v, [], count=2**31))
@@ -144,7 +144,7 @@ def main():
     write("bad_index.off", off(v, tris[:5] + [(0, 1, 8)] + tris[6:]))
     write("bad_index.obj", obj(v, tris[:5] + [(0, 1, 8)] + tris[6:]))
     write("bad_index.ply", ply_ascii(v, tris[:5] + [(0, 1, 8)] + tris[6:]))
-    # Fewer faces than the header claims: assimp 5.2 aborts the process on this one.
+    # Fewer faces than the header claims (assimp 5.2, used before issue 13, aborted the process on this one).
     write("truncated.off", off(v, quads[:5], counts=(8, 6)))
     write("truncated_ascii.ply", ply_ascii(v, quads).replace("element face 6", "element face 7"))
     write("truncated_binary.ply", ply_binary(v, tris)[:-7])

@@ -20,16 +20,22 @@
 namespace repose {
 
 struct CampaignParticle {
-  std::string name;    ///< unique, usable as a file name: the file's stem, or the sanitised shape spec
-  std::string source;  ///< mesh file or shape spec
+  std::string name;       ///< unique, usable as a file name: the file's stem, or the sanitised shape spec
+  std::string source;     ///< mesh file or shape spec
+  MeshOptions mesh = {};  ///< how its file becomes a particle (scale, inertia model, repair)
 };
 
 /// The particles of a job. Each input is a mesh file (STL, OBJ, PLY, OFF), a shape spec, or a directory
 /// (its mesh files, sorted by name, not recursive). A manifest (if not empty) lists one input per line;
 /// blank lines and lines starting with '#' are skipped, and relative paths are relative to the manifest's
-/// directory. Throws repose::Error for a missing file, an empty directory or two particles with one name.
+/// directory. Every particle reads its file with `mesh`; a manifest line may override those options for its
+/// own input after its path: `scan.ply --mesh-units mm --inertia convex` (options --scale S, --mesh-units
+/// mm|cm|m|in, --inertia exact|convex|shell, --repair, --largest-component; `lengths_in_cm`: the run's
+/// lengths are centimetres, so --mesh-units converts to them). Throws repose::Error for a missing file, an
+/// empty directory, a bad manifest option or two particles with one name.
 std::vector<CampaignParticle> resolve_particles(const std::vector<std::string>& inputs,
-                                                const std::string& manifest = "");
+                                                const std::string& manifest = "",
+                                                const MeshOptions& mesh = {}, bool lengths_in_cm = false);
 
 /// The drops of `wanted` not in `done` (disjoint, ascending). Throws repose::Error if `done` holds a drop
 /// outside `wanted`.

@@ -1,0 +1,105 @@
+// The mesh options at the command line, alike for info, settle and poses: --mesh-units / --scale,
+// --inertia convex | shell, --repair, point clouds, and the advice an unloadable file gets.
+#include <cmath>
+#include <fstream>
+#include <string>
+
+#include "cli_test_support.hpp"
+
+namespace repose::test {
+namespace {
+
+class MeshOptionsCli : public TempDirTest {
+ protected:
+  // A 10 × 20 × 30 box in millimetres, as eight corners and points inside (an .xyz point cloud).
+  std::string box_cloud_mm() {
+    const std::string path = (dir_ / "box_mm.xyz").string();
+    std::ofstream out(path);
+    out << "# x y z (mm)\n";
+    for (int i = 0; i < 8; ++i)
+      out << (i & 1 ? 10 : 0) << " " << (i & 2 ? 20 : 0) << " " << (i & 4 ? 30 : 0) << "\n";
+    out << "5 10 15\n2 3 4\n";
+    return path;
+  }
+  // The unit cube as OBJ with its top face (two triangles) missing: one hole.
+  std::string open_cube_obj() {
+    const std::string path = (dir_ / "open cube.obj").string();
+    std::ofstream out(path);
+    out << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+           "f 1 3 2\nf 1 4 3\n"                     // bottom (−z)
+           "f 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\n"   // −y, +x
+           "f 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";  // +y, −x
+    return path;
+  }
+};
+
+TEST_F(MeshOptionsCli, InfoReadsAPointCloudInMillimetresAsItsConvexHullInMetres) {
+  const std::string cloud = box_cloud_mm();
+  expect_bad_input(run_cli("info " + shell_quote(cloud)), {"box_mm.xyz", "no faces", "--inertia convex"});
+  const nlohmann::json j = parse_json(
+      run_cli("info " + shell_quote(cloud) + " --inertia convex --mesh-units mm --density 1000 --json"));
+  // 10 × 20 × 30 mm = 6e-6 m³, 6 g at 1000 kg/m³; the bounding box in metres.
+  EXPECT_NEAR(j["volume"].get<double>(), 6e-6, 1e-18);
+  EXPECT_NEAR(j["mass"].get<double>(), 6e-3, 1e-15);
+  EXPECT_EQ(j["inertia_model"], "convex");
+  EXPECT_EQ(j["surface_is_hull"], true);
+  EXPECT_NEAR(numbers(j["bounding_box"]["max"])[2], 0.03, 1e-15);
+  EXPECT_NEAR(j["characteristic_length"].get<double>(), std::cbrt(6 * 6e-6 / M_PI), 1e-15);
+  EXPECT_EQ(j["file"]["vertices"], 10);
+  // --scale is the same factor given as a number; the two cannot be combined.
+  const nlohmann::json s =
+      parse_json(run_cli("info " + shell_quote(cloud) + " --inertia convex --scale 0.001 --json"));
+  EXPECT_EQ(s["volume"], j["volume"]);
+  const CliResult both =
+      run_cli("info " + shell_quote(cloud) + " --inertia convex --scale 2 --mesh-units mm");
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_EQ(both.out, "");
+  // In cgs the same file is in centimetres.
+  const nlohmann::json cgs = parse_json(
+      run_cli("info " + shell_quote(cloud) + " --inertia convex --mesh-units mm --units cgs --json"));
+  EXPECT_NEAR(cgs["volume"].get<double>(), 6.0, 1e-12);
+}
+
+TEST_F(MeshOptionsCli, AnOpenSurfaceLoadsWithRepairShellOrConvexAndSaysSo) {
+  const std::string open = open_cube_obj();
+  expect_bad_input(run_cli("info " + shell_quote(open)), {"open cube.obj", "open surface", "--repair"});
+  const nlohmann::json repaired = parse_json(run_cli("info " + shell_quote(open) + " --repair --json"));
+  EXPECT_NEAR(repaired["volume"].get<double>(), 1.0, 1e-12);  // a flat hole in a flat face: exact
+  EXPECT_EQ(repaired["repair"]["holes_filled"], 1);
+  EXPECT_NEAR(repaired["repair"]["area_added"].get<double>(), 0.2, 1e-12);  // 1 of the other 5 unit faces
+  EXPECT_EQ(repaired["file"]["duplicate_vertices"], 0);  // the file shares its corners: nothing to weld
+  const CliResult text = run_cli("info " + shell_quote(open) + " --repair");
+  EXPECT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_THAT(text.out, ::testing::HasSubstr("1 holes filled"));
+  const nlohmann::json shell = parse_json(run_cli("info " + shell_quote(open) + " --inertia shell --json"));
+  EXPECT_NEAR(shell["area"].get<double>(), 5.0, 1e-12);
+  EXPECT_NEAR(numbers(shell["center_of_mass"])[2], 0.4, 1e-12);  // 4 walls at ½, the floor at 0
+  const nlohmann::json hull = parse_json(run_cli("info " + shell_quote(open) + " --inertia convex --json"));
+  EXPECT_NEAR(hull["volume"].get<double>(), 1.0, 1e-12);
+}
+
+TEST_F(MeshOptionsCli, SettleAndPosesTakeTheSameOptions) {
+  const std::string cloud = box_cloud_mm();
+  const nlohmann::json r = parse_json(run_cli("settle " + shell_quote(cloud) +
+                                              " --inertia convex --mesh-units mm --orientation "
+                                              "axis-angle:1,2,0.5,0.3 --json"));
+  EXPECT_EQ(r["status"], "rest");
+  const std::vector<double> com = numbers(r["rest"]["com"]);
+  ASSERT_EQ(com.size(), 3u);
+  const double h = com[2];  // rests on a face: half of 10, 20 or 30 mm, in metres
+  EXPECT_TRUE(std::abs(h - 0.005) < 1e-9 || std::abs(h - 0.010) < 1e-9 || std::abs(h - 0.015) < 1e-9) << h;
+  const nlohmann::json p =
+      parse_json(run_cli("poses " + shell_quote(cloud) + " --inertia convex --mesh-units mm -n 64 --json"));
+  EXPECT_EQ(p["particle"]["inertia_model"], "convex");
+  EXPECT_NEAR(p["particle"]["scale"].get<double>(), 1e-3, 1e-18);
+  EXPECT_EQ(p["n"], 64);
+  // A manifest line carries its own options.
+  std::ofstream(dir_ / "list.txt") << "box_mm.xyz --inertia convex --mesh-units mm\n";
+  const CliResult m =
+      run_cli("poses --manifest " + shell_quote((dir_ / "list.txt").string()) + " -n 64 --json");
+  const nlohmann::json mj = parse_json(m);
+  EXPECT_EQ(without_timing(mj)["poses"], without_timing(p)["poses"]);
+}
+
+}  // namespace
+}  // namespace repose::test
