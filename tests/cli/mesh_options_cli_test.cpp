@@ -1,7 +1,9 @@
 // The mesh options at the command line, alike for info, settle and poses: --mesh-units / --scale,
 // --inertia convex | shell, --repair, point clouds, and the advice an unloadable file gets.
 #include <cmath>
+#include <cstdio>
 #include <fstream>
+#include <repose/geometry/shapes.hpp>
 #include <string>
 
 #include "cli_test_support.hpp"
@@ -99,6 +101,36 @@ TEST_F(MeshOptionsCli, SettleAndPosesTakeTheSameOptions) {
       run_cli("poses --manifest " + shell_quote((dir_ / "list.txt").string()) + " -n 64 --json");
   const nlohmann::json mj = parse_json(m);
   EXPECT_EQ(without_timing(mj)["poses"], without_timing(p)["poses"]);
+}
+
+TEST_F(MeshOptionsCli, AMillimetreMeshScaledByAThousandthRestsAsTheSameMeshInMetres) {
+  // An irregular 2 cm grain written twice, in metres and in millimetres (%.17g, so the two files differ only
+  // by the decimal rounding of ×1000). Rest-pose probabilities do not depend on size (every tolerance is a
+  // fraction of L, gravity and damping scale with it), so they agree; that alone would also hold if --scale
+  // were ignored, hence L is compared too: the scaled grain must be the metre grain, to round-off.
+  const TriangleMesh grain = make_shape("irregular:seed=3,size=0.02");
+  const auto write_obj = [&](const std::string& name, double factor) {
+    const std::string path = (dir_ / name).string();
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    for (const Vec3& v : grain.vertices)
+      std::fprintf(f, "v %.17g %.17g %.17g\n", factor * v.x(), factor * v.y(), factor * v.z());
+    for (const Triangle& t : grain.triangles) std::fprintf(f, "f %d %d %d\n", t[0] + 1, t[1] + 1, t[2] + 1);
+    std::fclose(f);
+    return path;
+  };
+  const std::string metres = write_obj("grain_m.obj", 1.0), millimetres = write_obj("grain_mm.obj", 1000.0);
+  const nlohmann::json m = parse_json(run_cli("poses " + shell_quote(metres) + " -n 1500 --json"));
+  for (const std::string& option : {std::string("--scale 0.001"), std::string("--mesh-units mm")}) {
+    const nlohmann::json mm =
+        parse_json(run_cli("poses " + shell_quote(millimetres) + " " + option + " -n 1500 --json"));
+    const double l_m = m["particle"]["characteristic_length"].get<double>();
+    EXPECT_NEAR(mm["particle"]["characteristic_length"].get<double>(), l_m, 1e-12 * l_m) << option;
+    ASSERT_EQ(mm["poses"].size(), m["poses"].size()) << option;
+    // The same drops from the same orientations: equal counts pose by pose (a drop could change pose only by
+    // landing within round-off of a basin boundary).
+    for (std::size_t i = 0; i < m["poses"].size(); ++i)
+      EXPECT_EQ(mm["poses"][i]["count"], m["poses"][i]["count"]) << option;
+  }
 }
 
 }  // namespace
