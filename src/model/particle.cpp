@@ -66,7 +66,9 @@ MassProperties input_mass_properties(TriangleMesh& mesh, const std::string& name
       mesh = std::move(solid);
     } catch (const SurfaceError& e) {
       p.surface_is_hull = true;
-      p.report = {};
+      // What the file holds, as for a solid (duplicates, degenerate triangles), though its hull is used.
+      TriangleMesh cleaned = mesh;
+      p.report = clean_mesh(cleaned, name);
       // The message without its "NAME: " prefix (validate_mesh starts every message with the name).
       p.report.warnings.push_back(std::string("the surface is not a closed solid (") +
                                   (e.what() + name.size() + 2) + "): the particle is its convex hull");
@@ -74,9 +76,8 @@ MassProperties input_mass_properties(TriangleMesh& mesh, const std::string& name
   } else {
     p.surface_is_hull = true;
     p.report = {};
+    p.report.input_vertices = static_cast<int>(mesh.vertices.size());
   }
-  p.report.input_vertices = static_cast<int>(mesh.vertices.size());
-  p.report.input_triangles = static_cast<int>(mesh.triangles.size());
   if (!p.surface_is_hull) return compute_mass_properties(hull_surface(hull_of(mesh.vertices, name)), density);
   for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
     if (!mesh.vertices[v].allFinite())

@@ -242,6 +242,35 @@ TEST(MeshAdvice, UnloadableSurfacesNameTheOptionThatLoadsThem) {
             0u);
 }
 
+TEST(MeshAdvice, ANonManifoldFinLoadsByRepairOrShell) {
+  // The unit cube with a fin: one extra triangle on a top edge, so that edge has three triangles (a
+  // non-manifold fan). Exact: rejected, naming the options. Repair cuts the fin apart at the edge; alone it
+  // encloses no volume, so it is removed and the cube's volume stays exact (1e-12). Shell: the fin's area
+  // (½) adds to the cube's 6.
+  TriangleMesh fin = make_shape("box:x=1,y=1,z=1");
+  double zmax = -INFINITY;
+  for (const Vec3& v : fin.vertices) zmax = std::max(zmax, v.z());
+  int a = -1, b = -1;  // two corners of a top edge along x
+  for (int i = 0; i < static_cast<int>(fin.vertices.size()); ++i) {
+    const Vec3& v = fin.vertices[static_cast<std::size_t>(i)];
+    if (v.z() == zmax && v.y() == zmax) (a < 0 ? a : b) = i;
+  }
+  ASSERT_GE(b, 0);
+  fin.vertices.emplace_back(0.5 * (fin.vertices[a] + fin.vertices[b]) + Vec3(0, 0, 1));
+  fin.triangles.push_back({a, b, static_cast<int>(fin.vertices.size()) - 1});
+  const std::string m = message_of([&] { make_particle(fin, "fin.obj", 1.0); });
+  EXPECT_EQ(m.rfind("fin.obj: non-manifold surface", 0), 0u) << m;
+  EXPECT_NE(m.find("--repair"), std::string::npos) << m;
+  MeshOptions repair;
+  repair.repair = true;
+  const Particle repaired = make_particle(fin, "fin.obj", 1.0, repair);
+  EXPECT_NEAR(repaired.mass.volume, 1, 1e-12);
+  ASSERT_TRUE(repaired.repair.has_value());
+  EXPECT_EQ(repaired.repair->flat_components, 1);
+  const Particle shelled = make_particle(fin, "fin.obj", 1.0, shell());
+  EXPECT_NEAR(shelled.mass.area, 6.5, 1e-12);
+}
+
 TEST(MeshOptionsSettle, ABoxPointCloudRestsFlatOnAFace) {
   // The settling engine needs only the hull, the centre of mass and the inertia: a box given as points
   // rests on a face with its centre of mass at half the face's normal extent (up to the engine's 1e-9·L).
