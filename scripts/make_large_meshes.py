@@ -5,6 +5,8 @@
                         vertices inside the convex hull, as on a real scan
   ellipsoid_2m.ply      the same grid on an ellipsoid 1 x 0.8 x 0.6: every vertex on the convex hull (the
                         worst case for the hull)
+  bumpy_sphere_2m_holes.ply  the bumpy sphere with 100 holes punched (a 6 x 6 patch of grid cells, 72
+                        triangles, removed at each of 100 random places): a scan for --repair
   grain_200k.xyz        a 200,000-point cloud of a rough grain (ASCII x y z)
 
 Usage: scripts/make_large_meshes.py [DIR]   (needs NumPy: Debian python3-numpy, installed with matplotlib)
@@ -52,6 +54,14 @@ def main():
     bumpy = unit * np.concatenate([r.ravel(), [1.0, 1.0]])[:, None]
     write_ply(os.path.join(out, "bumpy_sphere_2m.ply"), bumpy, faces)
     write_ply(os.path.join(out, "ellipsoid_2m.ply"), unit * np.array([1.0, 0.8, 0.6]), faces)
+    # Holes: grid cells (row, column) away from the poles; cell (i, j) owns triangles i*nu + j in both halves.
+    keep = np.ones(len(faces), dtype=bool)
+    cells = (nv - 1) * nu
+    for i0, j0 in zip(rng.integers(10, nv - 20, 100), rng.integers(0, nu - 10, 100)):
+        for i in range(i0, i0 + 6):
+            for j in range(j0, j0 + 6):
+                keep[i * nu + j] = keep[cells + i * nu + j] = False
+    write_ply(os.path.join(out, "bumpy_sphere_2m_holes.ply"), bumpy, faces[keep])
     pts = rng.standard_normal((200000, 3))
     pts /= np.linalg.norm(pts, axis=1)[:, None]
     pts *= (1 + 0.1 * rng.random(200000))[:, None] * np.array([1.0, 0.8, 0.6])
