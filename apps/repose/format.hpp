@@ -41,6 +41,26 @@ inline void check_positive(const std::string& option, double value) {
     throw Error("option " + option + " must be a finite positive number, got " + num(value));
 }
 
+/// "X,Y,Z" as a vector of three finite numbers; throws repose::Error naming `option` otherwise.
+inline Vec3 parse_vector(const std::string& option, const std::string& text) {
+  Vec3 v;
+  std::istringstream in(text);
+  for (int i = 0; i < 3; ++i) {
+    std::string part;
+    if (!std::getline(in, part, i < 2 ? ',' : '\n') || part.empty())
+      throw Error("option " + option + " takes X,Y,Z (three numbers), got '" + text + "'");
+    std::size_t used = 0;
+    try {
+      v[i] = std::stod(part, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != part.size() || !std::isfinite(v[i]))
+      throw Error("option " + option + " takes X,Y,Z (three finite numbers), got '" + text + "'");
+  }
+  return v;
+}
+
 /// Prints the one-line message of a failed command on stderr, flushed, and returns its exit code: 2 for
 /// bad input (repose::Error), 1 for an internal error.
 inline int report_error(const std::exception_ptr& error) {

@@ -29,6 +29,10 @@ Integrator parse_integrator(const std::string& name) {
   throw Error("unknown integrator '" + name + "' (expected paper or adaptive)");
 }
 
+bool uses_impacts(const SettleParams& p) {
+  return p.restitution > 0 || p.spin != Vec3::Zero() || p.velocity.x() != 0 || p.velocity.y() != 0;
+}
+
 void validate(const SettleParams& p) {
   require(std::isfinite(p.gravity) && p.gravity > 0, "gravity", p.gravity, "a finite positive number");
   require(std::isfinite(p.damping) && p.damping >= 0, "damping", p.damping, "a finite number >= 0");
@@ -41,6 +45,15 @@ void validate(const SettleParams& p) {
           "a finite number >= 0");
   require(std::isfinite(p.drop_speed) && p.drop_speed >= 0, "drop-speed", p.drop_speed,
           "a finite number >= 0");
+  for (int i = 0; i < 3; ++i) {
+    require(std::isfinite(p.velocity[i]), "velocity", p.velocity[i], "finite in every component");
+    require(std::isfinite(p.spin[i]), "spin", p.spin[i], "finite in every component");
+  }
+  if (p.drop_speed != 0 && p.velocity.z() != 0)
+    throw Error("give the initial downward speed once: --drop-speed or the z of --velocity, not both");
+  require(std::isfinite(p.restitution) && p.restitution >= 0 && p.restitution <= 1, "restitution",
+          p.restitution, "in [0, 1]");
+  require(!std::isnan(p.friction) && p.friction >= 0, "friction", p.friction, "a number >= 0 (or inf)");
   require(std::isfinite(p.max_time) && p.max_time >= 0, "max-time", p.max_time,
           "a finite positive number (or 0 for automatic)");
   require(p.max_steps > 0, "max-steps", static_cast<double>(p.max_steps), "positive");

@@ -1,5 +1,6 @@
 #include "repose/output/report.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -21,15 +22,22 @@ std::string settle_summary_json(const Particle& particle, const SettleParams& pa
                     {vec_json(particle.mass.inertia.row(0)), vec_json(particle.mass.inertia.row(1)),
                      vec_json(particle.mass.inertia.row(2))}},
                    {"smooth", r.smooth}};
-  j["parameters"] = {{"gravity", params.gravity},
-                     {"damping", params.damping},
-                     {"integrator", to_string(params.integrator)},
-                     {"dt", r.dt},
-                     {"tolerance", params.tolerance},
-                     {"contact_threshold", params.contact_threshold},
-                     {"line_threshold", params.line_threshold},
-                     {"drop_height", params.drop_height},
-                     {"initial_orientation", quat_json(initial)}};
+  j["parameters"] = {
+      {"gravity", params.gravity},
+      {"damping", params.damping},
+      {"integrator", to_string(params.integrator)},
+      {"dt", r.dt},
+      {"tolerance", params.tolerance},
+      {"contact_threshold", params.contact_threshold},
+      {"line_threshold", params.line_threshold},
+      {"drop_height", params.drop_height},
+      {"drop_speed", params.drop_speed},
+      {"velocity", vec_json(params.velocity)},
+      {"spin", vec_json(params.spin)},
+      {"restitution", params.restitution},
+      // JSON has no infinity: no slip is written as null
+      {"friction", std::isinf(params.friction) ? nlohmann::json(nullptr) : nlohmann::json(params.friction)},
+      {"initial_orientation", quat_json(initial)}};
   j["status"] = to_string(r.status);
   j["time_to_rest"] = r.status == Status::rest ? nlohmann::json(r.time) : nlohmann::json(nullptr);
   j["time"] = r.time;
@@ -52,6 +60,21 @@ std::string settle_summary_json(const Particle& particle, const SettleParams& pa
   for (const Phase& p : r.phases)
     phases.push_back({{"contact", to_string(p.contact)}, {"t0", p.t0}, {"t1", p.t1}});
   j["phases"] = phases;
+  nlohmann::json impacts = nlohmann::json::array();
+  for (const ImpactRecord& i : r.impacts)
+    impacts.push_back({{"t", i.t},
+                       {"point", vec_json(i.point)},
+                       {"points", i.points},
+                       {"normal_speed_before", i.normal_speed_before},
+                       {"normal_speed_after", i.normal_speed_after},
+                       {"tangential_speed_before", i.tangential_speed_before},
+                       {"tangential_speed_after", i.tangential_speed_after},
+                       {"stick", i.stick},
+                       {"energy_before", i.energy_before},
+                       {"energy_after", i.energy_after},
+                       {"rebound", i.rebound}});
+  j["impacts"] = impacts;
+  j["bounces"] = r.bounces;
   j["energy"] = {{"start", r.energy_start}, {"end", r.energy_end}};
   j["unconverged_steps"] = r.unconverged_steps;
   return j.dump(2) + "\n";

@@ -1,49 +1,165 @@
-// The free fall (section 2.1), exact, and the first touch that ends it.
+// Off the wall: the free fall (section 2.1) and, for a toss or a rebound, the flight (issue 14). The centre
+// of mass follows its parabola exactly; the orientation is fixed (no spin: the touch time in closed form) or
+// turns torque-free (Euler's equations, integrated to the engine's tolerance), its touch found on the dense
+// output by a search that cannot step over it.
+#include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <cmath>
 
 #include "settler.hpp"
 
 namespace repose {
 
-// The fall is exact: the closed form from its start, z(t) = z0 − v0·t − ½·g·t², to the touch time
-// (−v0 + sqrt(v0² + 2·g·h))/g. Steps end on the grid of multiples of dt (observers see the fall there); a
-// stop at the time limit or at advance_to() is not a step, so where a run is stopped never changes it.
+namespace {
+constexpr int kTouchBisections = 44;   // a touch is bracketed to 2^-44 of a step (as every event)
+constexpr int kTouchIntervals = 4096;  // bound on the intervals the touch search examines in one step
+}  // namespace
+
+Vec3 Settler::Impl::flight_velocity() const {
+  return fall_velocity - Vec3(0, 0, params.gravity * (t - fall_t0));
+}
+
+// Starts a flight at t from the current pose with the given velocities; `height` is the lowest point's
+// height above the wall (the caller's exact value: the drop height, or 0 after a rebound).
+void Settler::Impl::begin_flight(const Vec3& velocity, const Vec3& omega, double height) {
+  falling = true;
+  fall_origin = com;
+  fall_velocity = velocity;
+  fall_t0 = t;
+  fall_steps = 0;
+  flight_omega = omega;
+  spinning = omega != Vec3::Zero();
+  const bool first = phases.empty();
+  set_type(first && !spinning ? ContactType::free_fall : ContactType::flight);
+  if (!spinning) {
+    lowest_body_height = INFINITY;
+    for (const Vec3& v : particle.hull.vertices)
+      lowest_body_height = std::min(lowest_body_height, (q * v).z());
+    const double up = velocity.z(), g = params.gravity;
+    touch_time = fall_t0 + (up + std::sqrt(up * up + 2 * g * height)) / g;
+    return;
+  }
+  if (!flight_rotation) {
+    free_body = {body.mass, body.inertia, body.gravity, 0.0};
+    flight_rotation.emplace(free_body, length, params.tolerance,
+                            kAdaptiveMaxStep * std::sqrt(length / params.gravity));
+  }
+  const sim::Support centre{com, Vec3::Zero(), false, Vec3::UnitX()};
+  const Mat3 R = q.toRotationMatrix();
+  const Vec3 momentum = R * body.inertia * R.transpose() * omega;  // about the centre of mass
+  flight_rotation->start(centre, {q, omega, momentum}, t, kFirstStep * std::sqrt(length / params.gravity));
+  flight_step_end = t;
+  flight_touch = INFINITY;
+}
+
+// A flight without rotation, exact: the parabola from its start, to the touch time found in closed form.
+// Steps end on the grid of multiples of dt from the flight's start (observers see the fall there); a stop at
+// the time limit or at advance_to() is not a step, so where a run is stopped never changes it.
 void Settler::Impl::fall_step() {
-  const double g = params.gravity, v0 = params.drop_speed;
-  const double grid = static_cast<double>(fall_steps + 1) * dt;
+  if (spinning) {
+    spin_step();
+    return;
+  }
+  const double g = params.gravity, down = -fall_velocity.z();
+  const double grid = fall_t0 + static_cast<double>(fall_steps + 1) * dt;
   const double end = std::min({grid, touch_time, max_time, limit});
   t = end;
+  const double tau = t - fall_t0;
+  com.x() = fall_origin.x() + fall_velocity.x() * tau;
+  com.y() = fall_origin.y() + fall_velocity.y() * tau;
   if (end == touch_time) {
     ++steps;
     com.z() = -lowest_body_height;  // exactly touching
-    fall_speed = v0 + g * touch_time;
-    begin_contact(Vec3(0, 0, -fall_speed));
+    touch(flight_velocity(), Vec3::Zero());
     return;
   }
   if (end == grid) {
     ++fall_steps;
     ++steps;
   }
-  com.z() = params.drop_height - lowest_body_height - (v0 * t + 0.5 * g * t * t);
-  fall_speed = v0 + g * t;
+  com.z() = fall_origin.z() - (down * tau + 0.5 * g * tau * tau);
 }
 
-// First touch (or the start of a run at drop height 0): translation stops and the particle pivots about its
-// lowest point; the impact conserves angular momentum about the new support.
-void Settler::Impl::begin_contact(const Vec3& com_velocity) {
-  falling = false;
-  int lowest = 0;
-  for (std::size_t k = 0; k < particle.hull.vertices.size(); ++k)
-    if ((q * particle.hull.vertices[k]).z() < (q * particle.hull.vertices[lowest]).z())
-      lowest = static_cast<int>(k);
-  const Vec3 p = particle.hull.vertices[lowest];
-  support = {Vec3(com.x() + (q * p).x(), com.y() + (q * p).y(), 0.0), p, false, Vec3::UnitX()};
-  support_vertex = lowest;
-  reach_radius = hull_radius + support.body.norm();
-  com = sim::com_position(support, q);
-  rot = {q, Vec3::Zero(), Vec3::Zero()};
-  restart = true;
-  restart_step = 0;
-  update_contacts(Vec3::Zero(), com_velocity);
+// A flight with rotation: one integrator step at a time, the touch located in each before the flight goes on.
+void Settler::Impl::spin_step() {
+  if (t >= flight_step_end) {
+    const auto [a, b] = flight_rotation->step();
+    flight_step_end = b;
+    flight_touch = locate_touch(a, b);
+    ++steps;
+  }
+  const double end = std::min({flight_touch, flight_step_end, max_time, limit});
+  t = end;
+  const sim::Rotation state = flight_rotation->state_at(t);
+  q = state.q;
+  flight_omega = state.omega;
+  const double tau = t - fall_t0;
+  com = fall_origin + fall_velocity * tau - Vec3(0, 0, 0.5 * params.gravity * tau * tau);
+  if (end != flight_touch) return;
+  // The bracket's lower end has every vertex on or above the wall: the lowest is set exactly on it.
+  double lowest = INFINITY;
+  for (const Vec3& v : particle.hull.vertices) lowest = std::min(lowest, (q * v).z());
+  com.z() = -lowest;
+  touch(flight_velocity(), flight_omega);
 }
+
+// The first instant in (a, b] at which a hull vertex reaches the wall, or +∞: the lower end of a bracket
+// 2^-44 of the step wide, so nothing is ever below the wall. The search cannot step over a touch: over an
+// interval [s0, s1] a vertex's height z has |z''| ≤ A = g + 2·R·|L|²/I_min² (the centre of mass's fall plus
+// the body's centripetal and torque-free angular accelerations, |ω| ≤ |L|/I_min), so from z and z' at both
+// ends it stays above the wall for (z'(s0) + sqrt(z'(s0)² + 2·A·z(s0)))/A after s0 and the mirror time
+// before s1; an interval those two cover is clear, any other is halved, earliest first.
+double Settler::Impl::locate_touch(double a, double b) {
+  const auto& verts = particle.hull.vertices;
+  const double i_min =
+      Eigen::SelfAdjointEigenSolver<Mat3>(body.inertia, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
+  const Mat3 R0 = q.toRotationMatrix();
+  const double spin_momentum = (R0 * body.inertia * R0.transpose() * flight_omega).norm();
+  const double accel = params.gravity + 2 * hull_radius * spin_momentum * spin_momentum / (i_min * i_min);
+  struct Sample {
+    double t;
+    std::vector<double> z, v;  // heights and vertical speeds of the vertices
+  };
+  auto sample_at = [&](double s) {
+    const sim::Rotation st = flight_rotation->state_at(s);
+    const double tau = s - fall_t0;
+    const double zc = fall_origin.z() + fall_velocity.z() * tau - 0.5 * params.gravity * tau * tau;
+    const double vc = fall_velocity.z() - params.gravity * tau;
+    Sample out{s, std::vector<double>(verts.size()), std::vector<double>(verts.size())};
+    for (std::size_t k = 0; k < verts.size(); ++k) {
+      const Vec3 r = st.q * verts[k];
+      out.z[k] = zc + r.z();
+      out.v[k] = vc + st.omega.cross(r).z();
+    }
+    return out;
+  };
+  auto below = [](const Sample& s) { return *std::min_element(s.z.begin(), s.z.end()) < 0; };
+  auto clear = [&](const Sample& l, const Sample& r) {
+    for (std::size_t k = 0; k < l.z.size(); ++k) {
+      const double zl = std::max(l.z[k], 0.0), zr = std::max(r.z[k], 0.0);
+      const double after = (l.v[k] + std::sqrt(l.v[k] * l.v[k] + 2 * accel * zl)) / accel;
+      const double before = (-r.v[k] + std::sqrt(r.v[k] * r.v[k] + 2 * accel * zr)) / accel;
+      if (after + before < r.t - l.t) return false;
+    }
+    return true;
+  };
+  const double resolution = (b - a) * std::ldexp(1.0, -kTouchBisections);
+  // Intervals still to examine, latest first on the stack so the earliest is examined first.
+  std::vector<std::pair<Sample, Sample>> stack;
+  stack.emplace_back(sample_at(a), sample_at(b));
+  for (int examined = 0; !stack.empty() && examined < kTouchIntervals; ++examined) {
+    auto [l, r] = std::move(stack.back());
+    stack.pop_back();
+    if (below(r)) {
+      if (r.t - l.t <= resolution) return l.t;  // bracketed: l on or above the wall, r below it
+    } else if (r.t - l.t <= resolution || clear(l, r)) {
+      continue;  // clear (an interval this short with both ends above the wall: a tangency within round-off)
+    }
+    Sample m = sample_at(0.5 * (l.t + r.t));
+    stack.emplace_back(m, std::move(r));
+    stack.emplace_back(std::move(l), std::move(m));
+  }
+  return stack.empty() ? INFINITY : stack.back().first.t;
+}
+
 }  // namespace repose

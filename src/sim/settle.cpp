@@ -30,6 +30,8 @@ const char* to_string(ContactType type) {
       return "line";
     case ContactType::surface:
       return "surface";
+    case ContactType::flight:
+      return "flight";
   }
   return "?";
 }
@@ -86,9 +88,15 @@ Settler::Impl::Impl(const Particle& p, const SettleParams& prm, const Quat& orie
   adaptive = params.integrator == Integrator::adaptive;
   dt = params.dt > 0 ? params.dt : (adaptive ? kAdaptiveMaxStep : 1e-3) * time_scale;
   if (adaptive) integrator.emplace(body, length, params.tolerance, dt);
-  const double fall_time =
+  double fall_time =
       (std::sqrt(params.drop_speed * params.drop_speed + 2 * params.gravity * params.drop_height)) /
       params.gravity;
+  if (uses_impacts(params) || params.velocity != Vec3::Zero()) {
+    // A toss rises first, and bounces take at most (1 + E)/(1 − E) times its first fall (a ball's series).
+    const double up = params.velocity.z() - params.drop_speed, g = params.gravity;
+    const double bounces = std::min(1e3, (1 + params.restitution) / std::max(1e-3, 1 - params.restitution));
+    fall_time = (std::abs(up) + std::sqrt(up * up + 2 * g * params.drop_height)) / g * bounces;
+  }
   // The impact rule's "pulled back within a tenth of a step" (impact_support.cpp) is on the paper's step; the
   // adaptive integrator's steps have no fixed length, so it uses a fixed time scale, 0.05·τ, instead.
   rebound_window = adaptive ? kReboundWindow * time_scale : dt;
@@ -105,21 +113,30 @@ Settler::Impl::Impl(const Particle& p, const SettleParams& prm, const Quat& orie
   lowest_body_height = INFINITY;
   for (const Vec3& v : p.hull.vertices) lowest_body_height = std::min(lowest_body_height, (q * v).z());
   com = Vec3(0, 0, params.drop_height - lowest_body_height);
-  energy_start = 0.5 * body.mass * params.drop_speed * params.drop_speed + potential_energy();
-  if (params.drop_height > 0) {
-    falling = true;
-    fall_speed = params.drop_speed;
-    touch_time =
-        (-fall_speed + std::sqrt(fall_speed * fall_speed + 2 * params.gravity * params.drop_height)) /
-        params.gravity;
-    phases.push_back({ContactType::free_fall, 0, 0});
-  } else {
-    begin_contact(Vec3(0, 0, -params.drop_speed));
+  rigid_impacts = uses_impacts(params);
+  impact_law = {params.restitution, params.friction};
+  const Vec3 velocity = params.velocity - Vec3(0, 0, params.drop_speed);
+  const bool toss = params.velocity != Vec3::Zero() || params.spin != Vec3::Zero();
+  energy_start = (toss ? 0.5 * body.mass * velocity.squaredNorm()
+                       : 0.5 * body.mass * params.drop_speed * params.drop_speed) +
+                 potential_energy();
+  if (params.spin != Vec3::Zero()) {
+    const Mat3 R = q.toRotationMatrix();
+    energy_start += 0.5 * params.spin.dot(R * body.inertia * R.transpose() * params.spin);
   }
+  if (params.drop_height > 0 || toss)
+    begin_flight(velocity, params.spin, params.drop_height);
+  else
+    begin_contact(Vec3(0, 0, -params.drop_speed));
 }
 
 double Settler::Impl::kinetic_energy() const {
-  if (falling) return 0.5 * body.mass * fall_speed * fall_speed;
+  if (falling) {
+    const Vec3 v = flight_velocity();
+    const Mat3 R = q.toRotationMatrix();
+    return 0.5 * body.mass * v.z() * v.z() + 0.5 * body.mass * (v.x() * v.x() + v.y() * v.y()) +
+           0.5 * flight_omega.dot(R * body.inertia * R.transpose() * flight_omega);
+  }
   if (status == Status::rest) return 0;
   return sim::rotational_energy(body, support, rot.q, rot.omega);
 }
@@ -150,9 +167,9 @@ Sample Settler::Impl::sample() const {
   Sample s;
   s.t = t;
   s.orientation = q;
-  s.omega = (falling || status == Status::rest) ? Vec3::Zero() : rot.omega;
+  s.omega = falling ? flight_omega : status == Status::rest ? Vec3::Zero() : rot.omega;
   s.com = com;
-  s.contact = falling ? ContactType::free_fall : type;
+  s.contact = type;
   s.contact_count = falling ? 0 : static_cast<int>(contact.size());
   s.kinetic_energy = kinetic_energy();
   s.potential_energy = potential_energy();
@@ -173,6 +190,8 @@ SettleResult Settler::Impl::result() const {
   r.contact_points = rest_points;
   r.down_normal_body = q.conjugate() * Vec3(0, 0, -1);
   r.phases = phases;
+  r.impacts = impacts;
+  r.bounces = bounces;
   r.energy_start = energy_start;
   r.energy_end = kinetic_energy() + potential_energy();
   r.smooth = smooth;

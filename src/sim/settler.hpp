@@ -1,6 +1,7 @@
 // Internal: the settling engine's per-run state (Settler::Impl) and its methods, defined by concept:
 //   settle.cpp          construction, step(), advance_to(), samples and results, the public API
-//   fall.cpp            the free fall (closed form) and the first touch
+//   fall.cpp            flights (the centre of mass's parabola, torque-free rotation) and their touch
+//   touch.cpp           what a touch does: the paper's (translation stops) or rigid impacts, rebound or not
 //   paper_step.cpp      the paper's fixed step with bisection of events
 //   adaptive_step.cpp   the adaptive integrator's steps, its events on the dense output, vertex walks
 //   decisions.cpp       the contact decisions at any instant of a step, and where they change
@@ -22,6 +23,7 @@
 #include "dynamics.hpp"
 #include "impact_support.hpp"
 #include "repose/sim/settle.hpp"
+#include "rigid_impact.hpp"
 #include "rotation_integrator.hpp"
 #include "stability.hpp"
 
@@ -77,11 +79,25 @@ struct Settler::Impl {
   double limit = INFINITY;  // advance_to(): no step goes past this time
   long steps = 0;
   Status status = Status::running;
-  bool falling = false;
-  double fall_speed = 0;          // downward
-  double touch_time = 0;          // when the falling particle reaches the wall
-  long fall_steps = 0;            // grid steps of the fall taken (it steps to multiples of dt)
-  double lowest_body_height = 0;  // min over hull vertices of (R p).z, constant while falling
+  bool falling = false;               // off the wall: the first descent or a flight (fall.cpp)
+  Vec3 fall_origin = Vec3::Zero();    // the centre of mass at the flight's start
+  Vec3 fall_velocity = Vec3::Zero();  // its velocity then
+  double fall_t0 = 0;                 // the flight's start
+  double touch_time = 0;              // when a flight without rotation reaches the wall (closed form)
+  long fall_steps = 0;                // grid steps of that flight taken (it steps to multiples of dt)
+  double lowest_body_height = 0;      // min over hull vertices of (R p).z, constant while not rotating
+  // A flight with rotation: torque-free, integrated about the centre of mass (damping 0), its touch located
+  // on the dense output of each step (fall.cpp).
+  bool spinning = false;
+  sim::Body free_body;  // the body without damping (off the wall); the integrator keeps a pointer to it
+  std::optional<sim::RotationIntegrator> flight_rotation;
+  Vec3 flight_omega = Vec3::Zero();
+  double flight_step_end = -INFINITY;  // the end of the current integrator step
+  double flight_touch = INFINITY;      // the touch located in it, if any
+  bool rigid_impacts = false;          // uses_impacts(params): touches while airborne are impacts
+  sim::ImpactLaw impact_law;
+  std::vector<ImpactRecord> impacts;
+  int bounces = 0;
   Quat q = Quat::Identity();
   Vec3 com = Vec3::Zero();
   sim::Support support;
@@ -146,9 +162,14 @@ struct Settler::Impl {
   double arc_bound(double h) const;                 // adaptive_step.cpp
   double rate_bound(double h) const;                // adaptive_step.cpp
 
-  // ---- free fall (fall.cpp)
+  // ---- flights (fall.cpp) and touches (touch.cpp)
+  Vec3 flight_velocity() const;  // the centre of mass's velocity at t
+  void begin_flight(const Vec3& velocity, const Vec3& omega, double height);
   void fall_step();
-  void begin_contact(const Vec3& com_velocity);
+  void spin_step();
+  double locate_touch(double a, double b);
+  void touch(const Vec3& velocity, const Vec3& omega);
+  void begin_contact(const Vec3& com_velocity, const Vec3& omega = Vec3::Zero(), bool carry = false);
 
   // ---- rotation steps and their events (paper_step.cpp, adaptive_step.cpp)
   // Whether vertex k, now at height zk, has (since the start of the step) passed below the wall, or entered

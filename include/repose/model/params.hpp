@@ -5,7 +5,10 @@
 // particle's characteristic length L, so they mean the same thing for a 50 µm grain and a 5 cm part.
 #pragma once
 
+#include <cmath>
 #include <string>
+
+#include "repose/geometry/types.hpp"
 
 namespace repose {
 
@@ -41,8 +44,17 @@ struct SettleParams {
   /// best-fit line is below this fraction of L². The paper's 0.1 (cm², for a particle of L ≈ 1 cm) is 0.1·L².
   double line_threshold = 0.1;
   SmoothMode smooth = SmoothMode::automatic;
-  double drop_height = 0.0;     ///< initial height of the lowest point above the wall (length)
-  double drop_speed = 0.0;      ///< initial downward speed (length/time), ≥ 0
+  double drop_height = 0.0;  ///< initial height of the lowest point above the wall (length)
+  double drop_speed = 0.0;   ///< initial downward speed (length/time), ≥ 0
+  /// A toss (issue 14): the centre of mass's initial velocity (length/time) and the initial angular velocity
+  /// (rad/time), world frame. The velocity's z adds to −drop_speed (give the downward speed one way only).
+  Vec3 velocity = Vec3::Zero();
+  Vec3 spin = Vec3::Zero();
+  /// Impacts while airborne (docs/method.md, "Rebound"): Stronge's energetic coefficient of restitution E in
+  /// [0, 1] and Coulomb's friction coefficient μ ≥ 0 (infinite: no slip). E = 0 with no spin and no
+  /// horizontal velocity keeps the paper's touch (translation stops, rotation from rest).
+  double restitution = 0.0;
+  double friction = INFINITY;
   double max_time = 0.0;        ///< simulated-time limit (time); 0 = automatic: 2000·sqrt(L/g) + fall time
   long max_steps = 20'000'000;  ///< step limit
   double quaternion_tolerance = 1e-8;  ///< convergence of the pseudo-time iteration (Eqs 12-16)
@@ -52,6 +64,11 @@ struct SettleParams {
 /// "paper" / "adaptive", and back (throws repose::Error for any other name).
 const char* to_string(Integrator integrator);
 Integrator parse_integrator(const std::string& name);
+
+/// Whether a run's touches are rigid-body impacts (restitution, friction, momentum carried over) rather than
+/// the paper's (translation stops at the first touch, §2.1): a toss with spin or horizontal velocity, or E >
+/// 0.
+bool uses_impacts(const SettleParams& params);
 
 /// Throws repose::Error naming the offending parameter if any is non-finite or out of range.
 void validate(const SettleParams& params);

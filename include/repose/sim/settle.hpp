@@ -18,8 +18,9 @@
 
 namespace repose {
 
-/// The contact type of section 2.2 (Algorithm 1), from the points within ε of the wall.
-enum class ContactType { free_fall, point, line, surface };
+/// The contact type of section 2.2 (Algorithm 1), from the points within ε of the wall; `free_fall` is the
+/// first descent without rotation, `flight` any other time off the wall (a toss with spin, a rebound).
+enum class ContactType { free_fall, point, line, surface, flight };
 
 /// How a run ended. `running` only while a Settler is still stepping.
 enum class Status { running, rest, max_time, max_steps };
@@ -52,6 +53,20 @@ struct Phase {
   double t1 = 0;
 };
 
+/// One impact of an airborne particle with the wall (docs/method.md, "Rebound"). Speeds are of the contact
+/// point (length/time): normal along +z (negative while approaching), tangential the horizontal magnitude.
+struct ImpactRecord {
+  double t = 0;
+  Vec3 point = Vec3::Zero();  ///< world; several vertices landing at once: their impulses' centre
+  double normal_speed_before = 0, normal_speed_after = 0;
+  double tangential_speed_before = 0, tangential_speed_after = 0;
+  bool stick = false;        ///< the contact point's sliding had stopped by the end of the impact
+  int points = 1;            ///< hull vertices on the wall at the impact
+  double energy_before = 0;  ///< kinetic + potential (mass·length²/time²)
+  double energy_after = 0;
+  bool rebound = false;  ///< a flight followed (else the paper's rotation took over: the hand-over)
+};
+
 struct SettleResult {
   Status status = Status::running;
   double time = 0;  ///< time to rest (or when the run stopped)
@@ -68,7 +83,9 @@ struct SettleResult {
   std::vector<Vec3> contact_points;      ///< world coordinates of the supporting points at rest
   Vec3 down_normal_body = Vec3::Zero();  ///< body-frame unit direction pointing at the wall at the end
   std::vector<Phase> phases;
-  double energy_start = 0;  ///< kinetic + potential at t = 0
+  std::vector<ImpactRecord> impacts;  ///< impacts while airborne (a toss or E > 0), in time order
+  int bounces = 0;                    ///< impacts followed by a flight
+  double energy_start = 0;            ///< kinetic + potential at t = 0
   double energy_end = 0;
   bool smooth = false;         ///< whether the particle was treated as smooth
   double dt = 0;               ///< the time step used

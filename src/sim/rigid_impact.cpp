@@ -1,0 +1,229 @@
+// A rigid body's impact on the wall (see rigid_impact.hpp for the model).
+#include "rigid_impact.hpp"
+
+#include <algorithm>
+
+namespace repose::sim {
+
+namespace {
+
+// Bounds that keep every loop finite; an integration that reaches them falls back to the frictionless law.
+constexpr int kMaxSteps = 100000;
+// While the point slides its direction may turn: steps of at most 1/256 of the frictionless compression
+// impulse keep RK4's error far below round-off of the energy (the direction is constant in planar impacts,
+// where every step is exact).
+constexpr int kStepsPerImpulse = 256;
+constexpr int kResumeBisections = 200;
+// A step that should end the sliding is taken as ending it if the tangential speed left is below this
+// fraction of the speed at the step's start (the linear prediction is exact when the direction is fixed).
+constexpr double kStopFraction = 1e-9;
+constexpr int kMaxSweeps = 10000;  // Gauss–Seidel sweeps of impulse_centre
+
+Mat3 skew(const Vec3& a) {
+  Mat3 m;
+  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+  return m;
+}
+
+// The one direction ŝ in which sliding starts again from rest when sticking needs more than μ: the
+// tangential velocity's rate K_tn − μ·K_tt·ŝ must be c·ŝ with c > 0, so ŝ = (μ·K_tt + c)⁻¹ K_tn with |ŝ| = 1;
+// |ŝ(c)| falls from |K_tt⁻¹ K_tn|/μ > 1 at c = 0 to at most 1 at c = |K_tn|.
+Vec2 resume_direction(const Eigen::Matrix2d& ktt, const Vec2& ktn, double mu) {
+  double lo = 0, hi = ktn.norm();
+  auto s = [&](double c) { return Vec2((mu * ktt + c * Eigen::Matrix2d::Identity()).inverse() * ktn); };
+  for (int i = 0; i < kResumeBisections && hi - lo > 0; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (s(mid).norm() > 1 ? lo : hi) = mid;
+  }
+  return s(hi).normalized();
+}
+
+Motion apply(double mass, const Mat3& inverse_inertia, const Vec3& r, const Motion& m, const Vec3& impulse) {
+  return {m.velocity + impulse / mass, m.omega + inverse_inertia * r.cross(impulse)};
+}
+
+}  // namespace
+
+double kinetic_energy(double mass, const Mat3& inertia, const Motion& m) {
+  return 0.5 * mass * m.velocity.squaredNorm() + 0.5 * m.omega.dot(inertia * m.omega);
+}
+
+ImpactOutcome collide(double mass, const Mat3& inertia, const Vec3& r, const Motion& before,
+                      const ImpactLaw& law) {
+  ImpactOutcome out;
+  out.after = before;
+  const Vec3 u0 = before.velocity + before.omega.cross(r);
+  out.speed_before = out.speed_after = u0;
+  out.stick = u0.head<2>().norm() == 0;
+  if (!(u0.z() < 0)) return out;
+
+  const Mat3 inverse = inertia.inverse();
+  const Mat3 rx = skew(r);
+  const Mat3 K = Mat3::Identity() / mass - rx * inverse * rx;
+  const Eigen::Matrix2d ktt = K.topLeftCorner<2, 2>();
+  const Vec2 ktn = K.block<2, 1>(0, 2);
+  const Vec2 stuck_rate = -ktt.ldlt().solve(ktn);  // dP_t/dp that keeps a stuck point stuck
+  const double e = law.restitution, mu = law.friction;
+  const double p_scale = -u0.z() / K(2, 2);  // the frictionless compression impulse
+  const double u_tiny = 1e-14 * u0.norm();   // speeds below this are zero (round-off of u0)
+
+  auto velocity = [&](const Vec3& P) { return Vec3(u0 + K * P); };
+  Vec3 P = Vec3::Zero();
+  double work = 0;  // of the normal impulse, ∫ u_n dp
+  bool restitution = false, done = false;
+  double target = 0;  // the work at which restitution ends
+  auto end_compression = [&] {
+    restitution = true;
+    target = (1 - e * e) * work;
+    done = e == 0;
+  };
+  bool sticking = std::isinf(mu);
+  if (sticking) P.head<2>() = -ktt.ldlt().solve(u0.head<2>());  // no slip: sliding stops at once
+  bool resumed = false;
+  Vec2 resume = Vec2::Zero();
+
+  for (int step = 0; !done; ++step) {
+    if (step == kMaxSteps) {  // not ended (a slide that never compresses fully): the frictionless law
+      const Vec3 impulse(0, 0, (1 + e) * p_scale);
+      out.after = apply(mass, inverse, r, before, impulse);
+      out.impulse = impulse;
+      out.speed_after = velocity(impulse);
+      out.stick = false;
+      out.fallback = true;
+      return out;
+    }
+    const Vec3 u = velocity(P);
+    if (sticking) {
+      // Everything is linear from here: the point stays stuck (K is constant during the impact).
+      const Vec3 rate = K * Vec3(stuck_rate.x(), stuck_rate.y(), 1);  // du/dp, rate.z() > 0 (Schur)
+      double un = u.z();
+      if (!restitution) {
+        const double dp = std::max(0.0, -un / rate.z());
+        work += un * dp + 0.5 * rate.z() * dp * dp;
+        P += dp * Vec3(stuck_rate.x(), stuck_rate.y(), 1);
+        un = 0;
+        end_compression();
+        if (done) break;
+      }
+      const double need = std::max(0.0, target - work);
+      const double dp = (-un + std::sqrt(un * un + 2 * rate.z() * need)) / rate.z();
+      work += un * dp + 0.5 * rate.z() * dp * dp;
+      P += dp * Vec3(stuck_rate.x(), stuck_rate.y(), 1);
+      break;
+    }
+    const Vec2 ut = u.head<2>();
+    const double slide = ut.norm();
+    if (mu > 0 && slide <= u_tiny && !resumed) {  // sliding has stopped: stick, or slide the other way
+      if (stuck_rate.norm() <= mu) {
+        sticking = true;
+        continue;
+      }
+      resume = resume_direction(ktt, ktn, mu);
+      resumed = true;
+    }
+    const Vec2 s0 = slide > u_tiny ? Vec2(ut / slide) : resume;
+    auto rate = [&](const Vec3& at) {  // d(P, work)/dp
+      const Vec2 t = velocity(at).head<2>();
+      const Vec2 s = t.norm() > u_tiny ? Vec2(t.normalized()) : s0;
+      return Vec3(-mu * s.x(), -mu * s.y(), 1);
+    };
+    const Vec3 dP = rate(P);
+    const Vec3 du = K * dP;
+    // The step: at most h, and no further than the first event on the rates at its start (exact when the
+    // sliding direction does not turn).
+    double dp = p_scale / kStepsPerImpulse;
+    enum { none, stops, compressed, finished } event = none;
+    const double slowing = s0.dot(du.head<2>());
+    if (mu > 0 && slide > u_tiny && slowing < 0 && slide / -slowing <= dp) {
+      dp = slide / -slowing;
+      event = stops;
+    }
+    if (!restitution && du.z() > 0 && -u.z() / du.z() <= dp) {
+      dp = -u.z() / du.z();
+      event = compressed;
+    }
+    if (restitution) {
+      const double need = std::max(0.0, target - work);
+      const double a = du.z(), b = std::max(u.z(), 0.0);
+      const double to_end =
+          a > 0 ? need / (0.5 * (b + std::sqrt(b * b + 2 * a * need))) : (b > 0 ? need / b : INFINITY);
+      if (to_end <= dp) {
+        dp = to_end;
+        event = finished;
+      }
+    }
+    // RK4 on (P, work) over dp.
+    auto f = [&](const Vec3& at) { return std::pair<Vec3, double>(rate(at), velocity(at).z()); };
+    const auto [k1, w1] = f(P);
+    const auto [k2, w2] = f(P + 0.5 * dp * k1);
+    const auto [k3, w3] = f(P + 0.5 * dp * k2);
+    const auto [k4, w4] = f(P + dp * k3);
+    P += dp / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+    work += dp / 6 * (w1 + 2 * w2 + 2 * w3 + w4);
+    resumed = resumed && event != stops;
+    switch (event) {
+      case stops:
+        // Stopped, up to the turning of the direction within the step: a remainder at round-off level is
+        // removed (within the cone: it is that small); a larger one is slid out by the next steps.
+        if (velocity(P).head<2>().norm() <= kStopFraction * slide) {
+          P.head<2>() -= ktt.ldlt().solve(velocity(P).head<2>());
+          resumed = false;
+        }
+        break;
+      case compressed:
+        if (velocity(P).z() >= -u_tiny) end_compression();
+        break;
+      case finished:
+        done = work >= target - 1e-15 * std::abs(target) || velocity(P).z() > 0;
+        break;
+      case none:
+        break;
+    }
+    if (!restitution && velocity(P).z() >= 0) end_compression();
+  }
+  out.impulse = P;
+  out.after = apply(mass, inverse, r, before, P);
+  out.speed_after = velocity(P);
+  out.stick = sticking || out.speed_after.head<2>().norm() <= u_tiny;
+  return out;
+}
+
+std::optional<Vec3> impulse_centre(double mass, const Mat3& inertia, const std::vector<Vec3>& r,
+                                   const Motion& before) {
+  const std::size_t n = r.size();
+  const Mat3 inverse = inertia.inverse();
+  std::vector<Vec3> arm(n);  // r_i × ẑ: the rotation a unit normal impulse at point i causes, times I
+  std::vector<double> b(n), x(n, 0.0);
+  double scale = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    arm[i] = r[i].cross(Vec3::UnitZ());
+    b[i] = (before.velocity + before.omega.cross(r[i])).z();
+    scale = std::max(scale, std::abs(b[i]));
+  }
+  Eigen::MatrixXd A(n, n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) A(i, j) = 1 / mass + arm[i].dot(inverse * arm[j]);
+  // Projected Gauss–Seidel on: x ≥ 0, w = A·x + b ≥ 0, x·w = 0 (A is positive semi-definite, so it converges
+  // to a solution; every solution gives the same velocities, hence the same resultant and centre).
+  for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
+    double change = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double w =
+          b[i] + A.row(static_cast<Eigen::Index>(i)).dot(Eigen::Map<const Eigen::VectorXd>(x.data(), n));
+      const double xi = std::max(0.0, x[i] - w / A(i, i));
+      change = std::max(change, std::abs(xi - x[i]) / mass);
+      x[i] = xi;
+    }
+    if (change <= 1e-16 * scale) break;
+  }
+  double total = 0;
+  Vec3 centre = Vec3::Zero();
+  for (std::size_t i = 0; i < n; ++i) {
+    total += x[i];
+    centre += x[i] * r[i];
+  }
+  if (!(total > 0)) return std::nullopt;
+  return centre / total;
+}
+
+}  // namespace repose::sim
