@@ -86,7 +86,7 @@ int ConvexHull::support_vertex_from(const Vec3& direction, int start) const {
   // Strictly uphill: every move raises the value, so the walk ends (at most once per vertex).
   for (bool moved = true; moved;) {
     moved = false;
-    for (int n : neighbors[static_cast<std::size_t>(at)]) {
+    for (int n : neighbors(at)) {
       const double v = direction.dot(vertices[static_cast<std::size_t>(n)]);
       if (v > value) {
         at = n;
@@ -106,7 +106,7 @@ void ConvexHull::vertices_at_least(const Vec3& direction, double level, int top,
   out.push_back(top);
   visited[static_cast<std::size_t>(top)] = 1;
   for (std::size_t i = first; i < out.size(); ++i)
-    for (int n : neighbors[static_cast<std::size_t>(out[i])]) {
+    for (int n : neighbors(out[i])) {
       if (visited[static_cast<std::size_t>(n)]) continue;
       if (direction.dot(vertices[static_cast<std::size_t>(n)]) < level) continue;
       visited[static_cast<std::size_t>(n)] = 1;
@@ -232,11 +232,19 @@ ConvexHull compute_convex_hull(const std::vector<Vec3>& points) {
     hull.faces.push_back(std::move(face));
   }
   // Each edge is a → b in one face's counter-clockwise loop and b → a in its neighbour's: taking the
-  // directed edges gives every vertex each neighbour once.
-  hull.neighbors.assign(hull.vertices.size(), {});
+  // directed edges gives every vertex each neighbour once. Two passes (count, then fill in face order) keep
+  // each vertex's neighbours in the order of the faces, as the walks' results depend on it.
+  const std::size_t nv = hull.vertices.size();
+  hull.neighbor_offsets.assign(nv + 1, 0);
+  for (const HullFace& face : hull.faces)
+    for (int v : face.loop) ++hull.neighbor_offsets[static_cast<std::size_t>(v) + 1];
+  for (std::size_t v = 0; v < nv; ++v) hull.neighbor_offsets[v + 1] += hull.neighbor_offsets[v];
+  hull.neighbor_list.resize(static_cast<std::size_t>(hull.neighbor_offsets[nv]));
+  std::vector<int> fill(hull.neighbor_offsets.begin(), hull.neighbor_offsets.end() - 1);
   for (const HullFace& face : hull.faces)
     for (std::size_t k = 0; k < face.loop.size(); ++k)
-      hull.neighbors[static_cast<std::size_t>(face.loop[k])].push_back(face.loop[(k + 1) % face.loop.size()]);
+      hull.neighbor_list[static_cast<std::size_t>(fill[static_cast<std::size_t>(face.loop[k])]++)] =
+          face.loop[(k + 1) % face.loop.size()];
   return hull;
 }
 

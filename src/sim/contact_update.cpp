@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "settler.hpp"
 
@@ -139,8 +140,9 @@ double Settler::Impl::stability_margin(const std::vector<Vec3>& contact_points, 
   const double dx = std::max({x0 - g.x(), g.x() - x1, 0.0}), dy = std::max({y0 - g.y(), g.y() - y1, 0.0});
   if (dx > 0 || dy > 0) return -std::hypot(dx, dy);
   std::vector<Vec2> plan;
+  plan.reserve(contact_points.size());
   for (const Vec3& p : contact_points) plan.emplace_back(p.x(), p.y());
-  return sim::polygon_margin(sim::convex_hull_2d(plan, touch_tol), g);
+  return sim::polygon_margin(sim::convex_hull_2d(std::move(plan), touch_tol), g);
 }
 
 // The support the contacts call for (see the file comment), and the switch to it if it is new.

@@ -183,13 +183,15 @@ TEST(ConvexHull, EdgeGraphWalksAgreeWithAScan) {
     SCOPED_TRACE(shape);
     const ConvexHull hull = compute_convex_hull(make_shape(shape).vertices);
     const std::size_t nv = hull.vertices.size();
-    ASSERT_EQ(hull.neighbors.size(), nv);
+    ASSERT_EQ(hull.neighbor_offsets.size(), nv + 1);
+    EXPECT_EQ(static_cast<std::size_t>(hull.neighbor_offsets.back()), hull.neighbor_list.size());
     std::size_t ends = 0;
     for (std::size_t v = 0; v < nv; ++v) {
-      ends += hull.neighbors[v].size();
-      EXPECT_GE(hull.neighbors[v].size(), 3u);  // a polytope's vertex has at least three edges
-      for (int n : hull.neighbors[v]) {         // symmetric
-        const auto& back = hull.neighbors[static_cast<std::size_t>(n)];
+      const auto around = hull.neighbors(static_cast<int>(v));
+      ends += around.size();
+      EXPECT_GE(around.size(), 3u);  // a polytope's vertex has at least three edges
+      for (int n : around) {         // symmetric
+        const auto back = hull.neighbors(n);
         EXPECT_EQ(std::count(back.begin(), back.end(), static_cast<int>(v)), 1);
       }
     }

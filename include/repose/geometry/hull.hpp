@@ -1,6 +1,7 @@
 // Convex hull of a particle, with coplanar hull triangles merged into planar faces.
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "repose/geometry/types.hpp"
@@ -20,8 +21,18 @@ struct ConvexHull {
   std::vector<Vec3> vertices;     ///< the hull's vertices (a subset of the input points)
   std::vector<int> source_index;  ///< index of each hull vertex in the input point set
   std::vector<HullFace> faces;
-  /// The edge graph: per vertex, the vertices joined to it by an edge of a (merged, planar) face.
-  std::vector<std::vector<int>> neighbors;
+  /// The edge graph in compressed rows (one flat array, walked constantly by the engine): the neighbours of
+  /// vertex v are neighbor_list[neighbor_offsets[v] .. neighbor_offsets[v + 1]) (vertices.size() + 1
+  /// offsets).
+  std::vector<int> neighbor_offsets;
+  std::vector<int> neighbor_list;
+
+  /// The vertices joined to vertex `v` by an edge of a (merged, planar) face.
+  std::span<const int> neighbors(int v) const {
+    const auto i = static_cast<std::size_t>(v);
+    const auto begin = static_cast<std::size_t>(neighbor_offsets[i]);
+    return {neighbor_list.data() + begin, static_cast<std::size_t>(neighbor_offsets[i + 1]) - begin};
+  }
 
   /// Index (into `vertices`) of the vertex furthest along `direction` (a scan of every vertex).
   int support_vertex(const Vec3& direction) const;
