@@ -45,7 +45,8 @@ struct PosesOptions {
   PhysicsOptions physics;
   MeshCliOptions mesh;
   double damping_ratio = 0.05;
-  double persistence = -1;  // fraction of L; < 0 = automatic
+  double velocity_max = 0, spin_max = 0;  // tosses
+  double persistence = -1;                // fraction of L; < 0 = automatic
   bool full_settle = false;
   bool no_progress = false;
   std::string out_dir;
@@ -133,6 +134,8 @@ CampaignOptions campaign_options(const PosesOptions& o, const CLI::App& sub, int
   s.damping_ratio = o.damping_ratio;
   s.persistence = given("--persistence") ? o.persistence : -1;
   s.decide_early = !o.full_settle;
+  s.params.friction = o.physics.friction_value();
+  s.toss = {o.velocity_max, o.spin_max};
   c.threads = threads;
   c.chunk = o.chunk;
   if (!o.out_dir.empty())
@@ -274,6 +277,13 @@ Command add_poses_command(CLI::App& app) {
   add_physics_options(*sub, o->physics,
                       "Damping coefficient C of Eq 4 (mass*length^2/time); overrides --damping-ratio");
   add_mesh_options(*sub, o->mesh);
+  add_impact_options(*sub, o->physics);
+  sub->add_option(
+      "--velocity-max", o->velocity_max,
+      "Tosses: drop i's centre-of-mass speed uniform in [0, V] in a random direction (length/time; "
+      "from drop i's own random stream)");
+  sub->add_option("--spin-max", o->spin_max,
+                  "Tosses: drop i's angular speed uniform in [0, W] about a random axis (rad/time)");
   sub->add_option("--damping-ratio", o->damping_ratio,
                   "Damping as C / (m*sqrt(g*L^3)) (default 0.05; the paper's ellipsoid used 0.063)");
   sub->add_option("--persistence", o->persistence,

@@ -33,8 +33,6 @@ struct SettleOptions {
   int frames = 0;
   bool json = false;
   std::string velocity, spin;  // X,Y,Z: a toss (world frame)
-  double restitution = 0;
-  std::string friction = "inf";
 };
 
 // Why the particle was treated as smooth or not, for the user to check the automatic decision.
@@ -121,17 +119,8 @@ RunSetup resolve_setup(const SettleOptions& o, const CLI::App& sub) {
   if (given("--smooth") || o.scenario.empty()) p.smooth = o.physics.smooth_mode();
   if (given("--velocity")) p.velocity = parse_vector("--velocity", o.velocity);
   if (given("--spin")) p.spin = parse_vector("--spin", o.spin);
-  if (given("--restitution")) p.restitution = o.restitution;
-  if (given("--friction")) {
-    std::size_t used = 0;
-    try {
-      p.friction = std::stod(o.friction, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != o.friction.size() || o.friction.empty())
-      throw Error("option --friction takes a number >= 0 or inf, got '" + o.friction + "'");
-  }
+  take("--restitution", p.restitution, o.physics.params.restitution);
+  if (given("--friction")) p.friction = o.physics.friction_value();
   validate(p);
   return setup;
 }
@@ -153,12 +142,7 @@ Command add_settle_command(CLI::App& app) {
                   "A toss: the centre of mass's initial velocity X,Y,Z (world frame, length/time; z adds to "
                   "-drop-speed)");
   sub->add_option("--spin", o->spin, "A toss: the initial angular velocity X,Y,Z (world frame, rad/time)");
-  sub->add_option("--restitution", o->restitution,
-                  "Impacts while airborne: Stronge's energetic coefficient of restitution E in [0, 1] "
-                  "(default 0: no rebound)");
-  sub->add_option(
-      "--friction", o->friction,
-      "Impacts while airborne: Coulomb friction coefficient mu >= 0, or inf: no slip (default inf)");
+  add_impact_options(*sub, o->physics);
   sub->add_option("--out", o->out_dir, "Write timeseries.csv and summary.json into this directory");
   sub->add_option("--vtk", o->vtk_dir, "Write ParaView frames (.vtp) and settling.pvd into this directory");
   sub->add_option(

@@ -2,8 +2,11 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cmath>
+#include <exception>
 #include <string>
 
+#include "repose/error.hpp"
 #include "repose/model/params.hpp"
 
 namespace repose::cli {
@@ -13,7 +16,22 @@ struct PhysicsOptions {
   std::string units = "si";
   std::string smooth = "auto";
   std::string integrator;  ///< empty: the library's default
+  std::string friction = "inf";
   SettleParams params;
+
+  /// --friction: a number >= 0 or "inf" (no slip). Throws repose::Error otherwise.
+  double friction_value() const {
+    std::size_t used = 0;
+    double mu = -1;
+    try {
+      mu = std::stod(friction, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (friction.empty() || used != friction.size() || std::isnan(mu) || mu < 0)
+      throw Error("option --friction takes a number >= 0 or inf (no slip), got '" + friction + "'");
+    return mu;
+  }
 
   Integrator integrator_kind() const {
     return integrator.empty() ? SettleParams{}.integrator : parse_integrator(integrator);
@@ -55,6 +73,17 @@ inline void add_physics_options(CLI::App& sub, PhysicsOptions& o, const std::str
   sub.add_option("--max-time", o.params.max_time,
                  "Simulated-time limit per run (0 or unset: automatic, 2000*sqrt(L/g) plus the fall time)");
   sub.add_option("--max-steps", o.params.max_steps, "Step limit per run (default 2e7)");
+}
+
+/// Registers --restitution and --friction (impacts while airborne) on `sub`.
+inline void add_impact_options(CLI::App& sub, PhysicsOptions& o) {
+  sub.add_option(
+      "--restitution", o.params.restitution,
+      "Impacts while airborne: Stronge's energetic coefficient of restitution E in [0, 1] (default 0: "
+      "no rebound, the paper's touch)");
+  sub.add_option(
+      "--friction", o.friction,
+      "Impacts while airborne: Coulomb's friction coefficient mu >= 0, or inf: no slip (default inf)");
 }
 
 }  // namespace repose::cli

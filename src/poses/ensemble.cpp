@@ -35,6 +35,20 @@ double highest_barrier_of(const RestPoseCatalog& catalog) {
   return m;
 }
 
+// The engine's parameters for drop `index`: the batch's, with the drop's own toss if there is one.
+SettleParams drop_params(const EnsembleOptions& options, std::uint64_t index) {
+  SettleParams params = options.params;
+  if (options.toss.active()) {
+    const Toss toss = drop_toss(options.seed, index, options.toss);
+    params.velocity = toss.velocity;
+    params.spin = toss.spin;
+  }
+  return params;
+}
+
+// Early decision stays exact with tosses and rebounds: the centre of mass is never below h(down) (nothing
+// goes below the wall, in flight either) and no impact creates energy, so the argument below holds for every
+// phase of the motion.
 DropOutcome run_dynamic_drop(const Particle& particle, const RestLandscape& landscape,
                              const RestPoseCatalog& catalog, const SettleParams& params, const Quat& start,
                              bool decide_early) {
@@ -133,7 +147,8 @@ DropOutcome simulate_drop(const Particle& particle, const RestLandscape& landsca
                           std::uint64_t index) {
   const Quat start = drop_orientation(options.seed, index);
   return options.method == PoseMethod::dynamic
-             ? run_dynamic_drop(particle, landscape, catalog, options.params, start, options.decide_early)
+             ? run_dynamic_drop(particle, landscape, catalog, drop_params(options, index), start,
+                                options.decide_early)
              : run_quasi_static_drop(particle, landscape, catalog, start);
 }
 
@@ -187,8 +202,9 @@ EnsembleTally run_ensemble(const Particle& particle, const RestLandscape& landsc
   for (std::size_t p = 0; p < catalog.poses.size() && options.finish_representatives; ++p) {
     PoseTally& pose = total.tally.poses[p];
     if (pose.count == 0 || pose.settled) continue;
-    const DropOutcome full = run_dynamic_drop(particle, landscape, catalog, options.params,
-                                              drop_orientation(options.seed, pose.first_drop), false);
+    const DropOutcome full =
+        run_dynamic_drop(particle, landscape, catalog, drop_params(options, pose.first_drop),
+                         drop_orientation(options.seed, pose.first_drop), false);
     // Should the full run end elsewhere (it must not, by the energy argument), fall back to the start
     // orientation set flush on the pose's face, which still shows the pose.
     pose.orientation = full.pose == static_cast<int>(p)

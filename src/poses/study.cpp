@@ -45,6 +45,10 @@ json settings_json(const PosesStudy& s) {
           {"smooth_mode", smooth_mode_name(p.smooth)},
           {"drop_height", p.drop_height},
           {"drop_speed", p.drop_speed},
+          {"restitution", p.restitution},
+          {"friction", std::isinf(p.friction) ? json(nullptr) : json(p.friction)},  // null: no slip
+          {"velocity_max", s.toss.velocity_max},
+          {"spin_max", s.toss.spin_max},
           {"max_time", p.max_time},
           {"max_steps", p.max_steps},
           {"decide_early", s.decide_early},
@@ -72,6 +76,13 @@ PosesStudy prepare_study(const Particle& particle, const RestLandscape& landscap
   SettleParams params = settings.params;
   if (!settings.damping_given) params.damping = 0;
   validate(params);
+  const TossDistribution& toss = settings.toss;
+  if (!(std::isfinite(toss.velocity_max) && toss.velocity_max >= 0))
+    throw Error("the tosses' largest speed (--velocity-max) must be a finite number >= 0");
+  if (!(std::isfinite(toss.spin_max) && toss.spin_max >= 0))
+    throw Error("the tosses' largest angular speed (--spin-max) must be a finite number >= 0");
+  if (settings.method == PoseMethod::quasi_static && (toss.active() || uses_impacts(params)))
+    throw Error("tosses and rebounds need --method dynamic (quasi-static rolling has no momentum)");
   const bool smooth = params.smooth == SmoothMode::on ||
                       (params.smooth == SmoothMode::automatic && is_smooth_surface(particle));
   if (!settings.damping_given)
@@ -94,6 +105,7 @@ PosesStudy prepare_study(const Particle& particle, const RestLandscape& landscap
   study.smooth = smooth;
   study.params = params;
   study.decide_early = settings.decide_early;
+  study.toss = settings.toss;
   study.catalog = catalog_rest_poses(particle, landscape, persistence);
   study.tally.seed = settings.seed;
   study.tally.method = settings.method;
@@ -108,6 +120,7 @@ EnsembleOptions ensemble_options(const PosesStudy& study, DropRange drops, int t
   options.method = study.tally.method;
   options.params = study.params;
   options.decide_early = study.decide_early;
+  options.toss = study.toss;
   options.threads = threads;
   return options;
 }
@@ -219,6 +232,12 @@ PosesStudy parse_poses_json(const std::string& text, const std::string& name) {
     p.smooth = parse_smooth_mode(set.at("smooth_mode").get<std::string>());
     p.drop_height = set.at("drop_height").get<double>();
     p.drop_speed = set.at("drop_speed").get<double>();
+    // Files written before tosses existed: drops from rest, no rebound.
+    p.restitution = set.value("restitution", 0.0);
+    p.friction = set.contains("friction") && !set.at("friction").is_null() ? set.at("friction").get<double>()
+                                                                           : INFINITY;
+    s.toss.velocity_max = set.value("velocity_max", 0.0);
+    s.toss.spin_max = set.value("spin_max", 0.0);
     p.max_time = set.at("max_time").get<double>();
     p.max_steps = whole(set.at("max_steps")).get<long>();
     s.decide_early = set.at("decide_early").get<bool>();

@@ -71,3 +71,50 @@ TEST(Sampling, RotationAngleAndImagesFollowTheHaarMeasure) {
 }
 
 }  // namespace
+
+namespace repose {
+namespace {
+
+TEST(TossSampling, SpeedsAreUniformUpToTheirMaximumInUniformDirections) {
+  // 100,000 tosses with V = 2, W = 3: |v| uniform in [0, V] has mean V/2 and standard deviation V/sqrt(12);
+  // a uniform direction has mean 0 and E[z²] = 1/3 per component (standard deviation of z²: sqrt(4/45)).
+  // Bounds at 5 standard errors (a false alarm ~1 in 10⁶); a wrong distribution (directions from uniform
+  // angles, speeds squared) is off by hundreds of them.
+  const TossDistribution d{2.0, 3.0};
+  const int n = 100000;
+  double mean_v = 0, mean_w = 0, cross = 0;
+  Vec3 mean_dir = Vec3::Zero(), mean_sq = Vec3::Zero();
+  for (int i = 0; i < n; ++i) {
+    const Toss t = drop_toss(11, static_cast<std::uint64_t>(i), d);
+    ASSERT_LE(t.velocity.norm(), 2.0);
+    ASSERT_LE(t.spin.norm(), 3.0);
+    mean_v += t.velocity.norm() / n;
+    mean_w += t.spin.norm() / n;
+    cross += (t.velocity.norm() - 1.0) * (t.spin.norm() - 1.5) / n;
+    const Vec3 u = t.velocity.normalized();
+    mean_dir += u / n;
+    mean_sq += u.cwiseProduct(u) / n;
+  }
+  const double se = 1 / std::sqrt(static_cast<double>(n));
+  EXPECT_NEAR(mean_v, 1.0, 5 * 2 / std::sqrt(12.0) * se);
+  EXPECT_NEAR(mean_w, 1.5, 5 * 3 / std::sqrt(12.0) * se);
+  EXPECT_NEAR(cross, 0.0, 5 * (2 / std::sqrt(12.0)) * (3 / std::sqrt(12.0)) * se);  // independent speeds
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(mean_dir[k], 0.0, 5 * std::sqrt(1.0 / 3) * se) << k;
+    EXPECT_NEAR(mean_sq[k], 1.0 / 3, 5 * std::sqrt(4.0 / 45) * se) << k;
+  }
+}
+
+TEST(TossSampling, ATossIsAPureFunctionOfSeedAndIndexAndLeavesTheOrientationAlone) {
+  const TossDistribution d{1.0, 1.0};
+  const Toss a = drop_toss(3, 42, d), b = drop_toss(3, 42, d), c = drop_toss(4, 42, d);
+  EXPECT_EQ(a.velocity, b.velocity);
+  EXPECT_EQ(a.spin, b.spin);
+  EXPECT_NE(a.velocity, c.velocity);
+  EXPECT_NE(a.velocity.normalized(), a.spin.normalized());  // separate counter words
+  EXPECT_EQ(drop_toss(3, 42, {}).velocity, Vec3::Zero());
+  EXPECT_FALSE(TossDistribution{}.active());
+}
+
+}  // namespace
+}  // namespace repose

@@ -14,6 +14,7 @@
 #include "repose/model/params.hpp"
 #include "repose/model/particle.hpp"
 #include "repose/poses/rest_poses.hpp"
+#include "repose/poses/sampling.hpp"
 #include "repose/sim/settle.hpp"
 
 namespace repose {
@@ -39,6 +40,9 @@ struct EnsembleOptions {
   DropRange drops;
   PoseMethod method = PoseMethod::dynamic;
   SettleParams params;  ///< for the dynamic method
+  /// Dynamic method: drop i is tossed with drop_toss(seed, i, toss) (its velocity and spin replace
+  /// params.velocity and params.spin) when the distribution is active.
+  TossDistribution toss;
   /// Dynamic method: stop a drop as soon as its pose is decided — it touches the wall and its mechanical
   /// energy is below m·g·(barrier of the pose it is rolling into) — instead of simulating the last, slow
   /// rocking. Exact by energy: the engine never gains energy, so the particle cannot climb out.

@@ -19,4 +19,21 @@ std::array<double, 3> drop_uniforms(std::uint64_t seed, std::uint64_t index);
 /// subgroup algorithm (Graphics Gems III, 1992) applied to drop_uniforms(seed, index).
 Quat drop_orientation(std::uint64_t seed, std::uint64_t index);
 
+/// Tosses for batches of drops (issue 14): the centre of mass's speed uniform in [0, velocity_max] and the
+/// angular speed uniform in [0, spin_max], each in a uniformly random direction (world frame).
+struct TossDistribution {
+  double velocity_max = 0;  ///< length/time
+  double spin_max = 0;      ///< rad/time
+  bool active() const { return velocity_max > 0 || spin_max > 0; }
+};
+
+struct Toss {
+  Vec3 velocity = Vec3::Zero();
+  Vec3 spin = Vec3::Zero();
+};
+
+/// The toss of drop `index`: from the same counter-based stream as its orientation (further counter words),
+/// so it too is a pure function of (seed, index).
+Toss drop_toss(std::uint64_t seed, std::uint64_t index, const TossDistribution& distribution);
+
 }  // namespace repose

@@ -31,6 +31,7 @@ struct PosesStudy {
   bool smooth = false;  ///< treated as smooth (the settling engine's smooth model)
   // Settings.
   SettleParams params;
+  TossDistribution toss;  ///< tosses (issue 14); inactive: drops from rest
   bool decide_early = true;
   // Results.
   RestPoseCatalog catalog;  ///< face_pose is not recorded in the file
@@ -48,6 +49,7 @@ struct StudySettings {
   double damping_ratio = 0.05;  ///< otherwise C = damping_ratio · m · sqrt(g L³)
   double persistence = -1;      ///< pose-merge threshold as a fraction of L; < 0 = default_persistence
   bool decide_early = true;
+  TossDistribution toss;  ///< drop i's toss: drop_toss(seed, i, toss)
 };
 
 /// The study of `particle` under `settings` with nothing counted yet (a tally of zero drops over its
