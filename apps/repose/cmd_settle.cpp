@@ -65,8 +65,11 @@ void print_summary(const Particle& particle, const SettleParams& params, const S
             << "centre of mass  " << vec(r.com) << "\n"
             << "penetration     " << num(r.max_penetration) << " max ("
             << num(r.max_penetration / particle.length) << " L)\n"
-            << "energy          " << num(r.energy_start) << " -> " << num(r.energy_end) << "\n"
-            << "phases         ";
+            << "energy          " << num(r.energy_start) << " -> " << num(r.energy_end) << "\n";
+  if (!r.impacts.empty())
+    std::cout << "impacts         " << r.impacts.size() << " while airborne, " << r.bounces
+              << " followed by a flight (--json lists them)\n";
+  std::cout << "phases         ";
   for (const Phase& p : r.phases)
     std::cout << " " << to_string(p.contact) << " [" << num(p.t0) << ", " << num(p.t1) << "]";
   std::cout << "\n";
@@ -119,6 +122,7 @@ RunSetup resolve_setup(const SettleOptions& o, const CLI::App& sub) {
   if (given("--smooth") || o.scenario.empty()) p.smooth = o.physics.smooth_mode();
   if (given("--velocity")) p.velocity = parse_vector("--velocity", o.velocity);
   if (given("--spin")) p.spin = parse_vector("--spin", o.spin);
+  // Without a scenario these are the defaults (or the options); with one, only options given override it.
   take("--restitution", p.restitution, o.physics.params.restitution);
   if (given("--friction")) p.friction = o.physics.friction_value();
   validate(p);

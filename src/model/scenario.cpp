@@ -23,6 +23,14 @@ double number(const json& j, const char* key, double fallback, const std::string
   return j[key].get<double>();
 }
 
+Vec3 vector3(const json& j, const char* key, const Vec3& fallback, const std::string& origin) {
+  if (!j.contains(key)) return fallback;
+  const json& a = j[key];
+  if (!a.is_array() || a.size() != 3 || !a[0].is_number() || !a[1].is_number() || !a[2].is_number())
+    throw Error(origin + ": field '" + key + "' must be an array of three numbers [x, y, z]");
+  return Vec3(a[0].get<double>(), a[1].get<double>(), a[2].get<double>());
+}
+
 std::string text(const json& j, const char* key, const std::string& fallback, const std::string& origin) {
   if (!j.contains(key)) return fallback;
   if (!j[key].is_string()) throw Error(origin + ": field '" + key + "' must be a string");
@@ -41,9 +49,10 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
   }
   if (!j.is_object()) throw Error(origin + ": a scenario must be a JSON object");
   static const std::set<std::string> known = {
-      "name",        "description", "note",   "particle",          "density",        "units",
-      "orientation", "damping",     "dt",     "contact_threshold", "line_threshold", "drop_height",
-      "drop_speed",  "max_time",    "smooth", "integrator",        "tolerance"};
+      "name",        "description", "note",    "particle",          "density",        "units",
+      "orientation", "damping",     "dt",      "contact_threshold", "line_threshold", "drop_height",
+      "drop_speed",  "max_time",    "smooth",  "integrator",        "tolerance",      "velocity",
+      "spin",        "restitution", "friction"};
   for (const auto& [key, value] : j.items())
     if (!known.count(key)) throw Error(origin + ": unknown field '" + key + "'");
   if (!j.contains("particle")) throw Error(origin + ": missing field 'particle'");
@@ -82,6 +91,10 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
   p.drop_height = number(j, "drop_height", p.drop_height, origin);
   p.drop_speed = number(j, "drop_speed", p.drop_speed, origin);
   p.max_time = number(j, "max_time", p.max_time, origin);
+  p.velocity = vector3(j, "velocity", p.velocity, origin);
+  p.spin = vector3(j, "spin", p.spin, origin);
+  p.restitution = number(j, "restitution", p.restitution, origin);
+  p.friction = number(j, "friction", p.friction, origin);  // absent: no slip
   const std::string smooth = text(j, "smooth", "auto", origin);
   if (smooth != "auto" && smooth != "on" && smooth != "off")
     throw Error(origin + ": smooth must be \"auto\", \"on\" or \"off\", got \"" + smooth + "\"");

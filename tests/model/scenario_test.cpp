@@ -132,5 +132,34 @@ TEST(ScenarioFile, ReadsTheIntegratorAndItsTolerance) {
   EXPECT_EQ(d.params.tolerance, SettleParams{}.tolerance);
 }
 
+// A toss is a scenario too: velocity and spin as [x, y, z], restitution and friction as numbers.
+TEST(ScenarioFile, ReadsATossAndRejectsMalformedVectors) {
+  const Scenario s = parse_scenario(
+      R"({"particle": "box:x=1,y=1,z=1", "velocity": [1, 0, 2], "spin": [0, 3, 0], "restitution": 0.4,
+          "friction": 0.3})",
+      "t.json");
+  EXPECT_EQ(s.params.velocity, Vec3(1, 0, 2));
+  EXPECT_EQ(s.params.spin, Vec3(0, 3, 0));
+  EXPECT_EQ(s.params.restitution, 0.4);
+  EXPECT_EQ(s.params.friction, 0.3);
+  EXPECT_TRUE(std::isinf(parse_scenario(R"({"particle": "box:x=1,y=1,z=1"})", "d.json").params.friction));
+  for (const char* bad : {R"({"particle": "box:x=1,y=1,z=1", "velocity": [1, 2]})",
+                          R"({"particle": "box:x=1,y=1,z=1", "spin": "1,2,3"})",
+                          R"({"particle": "box:x=1,y=1,z=1", "velocity": [1, "a", 2]})"}) {
+    try {
+      parse_scenario(bad, "t.json");
+      ADD_FAILURE() << bad;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("array of three numbers"), std::string::npos) << e.what();
+    }
+  }
+  try {
+    parse_scenario(R"({"particle": "box:x=1,y=1,z=1", "restitution": 2})", "t.json");
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("restitution"), std::string::npos);
+  }
+}
+
 }  // namespace
 }  // namespace repose

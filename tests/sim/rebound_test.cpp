@@ -203,6 +203,35 @@ TEST(Rebound, RandomTossesNeverCreateEnergyNorSinkBelowTheWall) {
   EXPECT_GT(impacts, 1000);
 }
 
+TEST(Rebound, TheHandOverKeepsTheAngularMomentumAboutTheStruckVertex) {
+  // A tilted cube thrown sideways lands on one vertex P with E = 0 and no slip: the impulse acts at P, so
+  // the angular momentum about P is conserved, L_P = m·(G − P) × v (no spin before), and the paper's
+  // rotation starts about P with I_P·ω = L_P (I_P the inertia about P, parallel-axis theorem).
+  const Particle cube = load_particle("box:x=1,y=1,z=1", 1000.0);
+  SettleParams p;
+  p.drop_height = 0.4;
+  p.velocity = Vec3(1.2, 0.5, 0);
+  const Quat q(Eigen::AngleAxisd(0.9, Vec3(1, 2, 3).normalized()));
+  std::vector<Sample> samples;
+  const SettleResult r = settle(cube, p, q, [&](const Sample& s) { samples.push_back(s); });
+  ASSERT_EQ(r.impacts.size(), 1u);
+  ASSERT_EQ(r.impacts[0].points, 1);
+  ASSERT_FALSE(r.impacts[0].rebound);
+  const double t = r.impacts[0].t;
+  const Vec3 v = p.velocity - Vec3(0, 0, kG * t);
+  const Sample* after = nullptr;
+  for (const Sample& s : samples)
+    if (s.t == t && s.contact != ContactType::free_fall && s.contact != ContactType::flight) after = &s;
+  ASSERT_NE(after, nullptr);
+  const Vec3 arm = after->com - r.impacts[0].point;  // P → G
+  const Vec3 expected = cube.mass.mass * arm.cross(v);
+  const Mat3 R = after->orientation.toRotationMatrix();
+  const Mat3 i_p = R * cube.mass.inertia * R.transpose() +
+                   cube.mass.mass * (arm.squaredNorm() * Mat3::Identity() - arm * arm.transpose());
+  EXPECT_NEAR((i_p * after->omega - expected).norm(), 0, 1e-9 * expected.norm());
+  EXPECT_GT(after->omega.norm(), 0.1);
+}
+
 TEST(Rebound, WithoutRestitutionOrTossTheRunIsThePapers) {
   // The defaults keep the paper's touch (translation stops): a rigid-impact setting that cannot act (μ
   // alone) changes nothing, to the bit.

@@ -8,9 +8,11 @@
 //   density                  mass / length³ (default 1)
 //   units                    "si" | "cgs" (default "si"): sets gravity 9.81 m/s² or 981 cm/s²
 //   orientation              orientation spec, e.g. "axis-angle:1,0,0,1.106" (default "identity")
-//   damping, dt, contact_threshold, line_threshold, drop_height, drop_speed, max_time   numbers, as
-//   SettleParams smooth                   "auto" | "on" | "off" note                     free text: why this
-//   input was chosen (shown in the reproduction report)
+//   damping, dt, contact_threshold, line_threshold, drop_height, drop_speed, max_time, restitution,
+//   friction                 numbers, as SettleParams (friction absent: no slip)
+//   velocity, spin           [x, y, z], as SettleParams (a toss)
+//   smooth                   "auto" | "on" | "off"
+//   note                     free text: why this input was chosen (shown in the reproduction report)
 #pragma once
 
 #include <string>
