@@ -175,6 +175,31 @@ TEST(Ensemble, EnergyAboveThePoseBarrierIsNotDecidedInTheAir) {
 // [0, 0.2775], to 4 decimals, so 5e-5 (half a unit of the last digit; measured 1.2e-5, 9.6e-6, 3.3e-5). The
 // same bounds to 15 digits, evaluated at 30 digits (mpmath) from (x + z²/2 ± z·sqrt(x(n − x)/n + z²/4)) /
 // (n + z²), z = sqrt(2)·erfinv(0.95): 1e-12 relative is a round-off margin (measured ≤ 2.3e-16).
+TEST(Ensemble, ATossedDropIsTheSettleOfItsOwnToss) {
+  // Drop i of a tossed batch is exactly settle() from drop_orientation(seed, i) with drop_toss(seed, i)'s
+  // velocity and spin (full settle, so the rest face itself is compared, and the steps).
+  const Study s("box:x=1,y=2,z=3");
+  EnsembleOptions o;
+  o.seed = 42;
+  o.params.drop_height = 0.5;
+  o.params.restitution = 0.5;
+  o.params.friction = 0.4;
+  o.toss = {2.0, 5.0};
+  o.decide_early = false;
+  for (std::uint64_t i = 0; i < drops(40); ++i) {
+    const DropOutcome d = simulate_drop(s.particle, s.landscape, s.catalog, o, i);
+    SettleParams p = o.params;
+    const Toss toss = drop_toss(o.seed, i, o.toss);
+    p.velocity = toss.velocity;
+    p.spin = toss.spin;
+    const SettleResult r = settle(s.particle, p, drop_orientation(o.seed, i));
+    ASSERT_EQ(r.status, Status::rest) << i;
+    EXPECT_EQ(d.pose, s.catalog.face_pose[r.rest_face]) << i;
+    EXPECT_EQ(d.steps, r.steps) << i;
+    EXPECT_EQ(d.orientation.coeffs(), r.orientation.coeffs()) << i;
+  }
+}
+
 TEST(Ensemble, WilsonIntervalMatchesPublishedValues) {
   const auto a = wilson_interval(81, 263);
   EXPECT_NEAR(a[0], 0.2553, 5e-5);
