@@ -26,12 +26,30 @@ DATA = os.path.join(ROOT, "data", "experiments", "baktash2025")
 # material (docs/experiments.md). Lengths in L, speeds in sqrt(g*L), spins in sqrt(g/L).
 TOSS = {"drop_height": 4.0, "velocity_max": 1.5, "spin_max": 1.5, "restitution": 0.5, "friction": 0.3}
 
+# The 2d6 hendecahedra: outcomes are the sums 2..12 of two dice; the repository does not say which of two
+# mirror-image faces is which sum (e.g. 6 or 8, both 5/36), so sums of equal designed probability are
+# compared together: 7; 6 or 8; 5 or 9; 4 or 10; 3 or 11; 2 or 12.
+SUMS = list(range(2, 13))
+
+
+def sum_class(designed_probability):
+    k = round(designed_probability * 36)  # 6 − |s − 7|
+    return "7" if k == 6 else f"{7 - (6 - k)} or {7 + (6 - k)}"
+
+
 OBJECTS = [
-    # name in counts.csv, series, mesh, outcome normals, label
+    # name in counts.csv, series, mesh, outcome normals, label; outcomes grouped by designed probability?
     ("binom2_3prism", "single", "Binom2__opt_test.obj", "Binom2__final_normal_probs.json", "3-sided prism (binom2)"),
     ("binom3_4prism", "wooden_surface(freq2)", "Binom3__opt_test.obj", "Binom3__final_normal_probs.json",
      "4-sided prism (binom3), wooden table"),
     ("binom4_5prism", "single", "Binom4__opt_test.obj", "Binom4__final_normal_probs.json", "5-sided prism (binom4)"),
+    ("hendecahedron_2d6_design_v2", "series_V1(=SLA list in experiment_results.txt)",
+     "2D6_hendecahedron_V1__opt_test.obj", "2D6_hendecahedron_V1__final_normal_probs.json",
+     "2d6 hendecahedron, design v2, first series (SLA print)"),
+    ("hendecahedron_2d6_design_v2", "series_V2", "2D6_hendecahedron_V1__opt_test.obj",
+     "2D6_hendecahedron_V1__final_normal_probs.json", "2d6 hendecahedron, design v2, second series"),
+    ("hendecahedron_2d6_design_v5", "single", "2D6_hendecahedron_V2__opt_test.obj",
+     "2D6_hendecahedron_V2__final_normal_probs.json", "2d6 hendecahedron, design v5"),
 ]
 
 
@@ -84,8 +102,18 @@ def main():
     for name, series, mesh_file, normals_file, label in OBJECTS:
         mesh = os.path.join(DATA, "meshes", mesh_file)
         with open(os.path.join(DATA, "outcomes", normals_file)) as f:
-            normals = [p["normal"] for p in json.load(f)["pairs"]]
+            pairs = json.load(f)["pairs"]
+        normals = [p["normal"] for p in pairs]
         measured = counts[(name, series)]
+        labels = [str(i) for i in range(len(measured))]
+        group = None  # outcome index → row, when outcomes are compared in groups
+        if name.startswith("hendecahedron_2d6"):
+            labels = ["7", "6 or 8", "5 or 9", "4 or 10", "3 or 11", "2 or 12"]
+            grouped = [0] * len(labels)
+            for s_, c in zip(SUMS, measured):
+                grouped[labels.index(sum_class((6 - abs(s_ - 7)) / 36))] += c
+            measured = grouped
+            group = [labels.index(sum_class(p["probability"])) for p in pairs]
         n = sum(measured)
         quasi = run_poses(a.repose, mesh, ["--method", "quasi-static"], a.drops, a.threads)
         length, g = quasi["particle"]["characteristic_length"], 9.81
@@ -95,15 +123,23 @@ def main():
             "--velocity-max", repr(TOSS["velocity_max"] * math.sqrt(g * length)),
             "--spin-max", repr(TOSS["spin_max"] * math.sqrt(g / length)),
             "--restitution", repr(TOSS["restitution"]), "--friction", repr(TOSS["friction"])], a.drops, a.threads)
-        predictions = [("quasi-static", outcome_probabilities(quasi, normals)),
-                       ("dynamic, from rest (no rebound)", outcome_probabilities(rest, normals)),
-                       ("tossed, with rebound", outcome_probabilities(toss, normals))]
+        def regroup(probs):
+            if group is None:
+                return probs
+            out = [0.0] * len(labels)
+            for i, p in enumerate(probs):
+                out[group[i]] += p
+            return out
+
+        predictions = [("quasi-static", regroup(outcome_probabilities(quasi, normals))),
+                       ("dynamic, from rest (no rebound)", regroup(outcome_probabilities(rest, normals))),
+                       ("tossed, with rebound", regroup(outcome_probabilities(toss, normals)))]
         print(f"### {label}: {n} throws\n")
         print("| outcome | measured | 95 % interval | " + " | ".join(p for p, _ in predictions) + " |")
         print("|---|---:|---|" + "---:|" * len(predictions))
         for i, c in enumerate(measured):
             lo, hi = wilson(c, n)
-            print(f"| {i} | {c / n:.3f} ({c}) | [{lo:.3f}, {hi:.3f}] | " +
+            print(f"| {labels[i]} | {c / n:.3f} ({c}) | [{lo:.3f}, {hi:.3f}] | " +
                   " | ".join(f"{probs[i]:.3f}" for _, probs in predictions) + " |")
         print("| χ² p-value | | | " + " | ".join(f"{p_value(measured, probs):.3g}" for _, probs in predictions)
               + " |\n")

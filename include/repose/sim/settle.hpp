@@ -101,6 +101,9 @@ class Settler {
  public:
   /// Starts a run with the particle at `orientation` (body → world). The lowest point is placed at height
   /// params.drop_height above the wall, directly above the origin. Throws repose::Error for invalid params.
+  /// A DEM code hands over a moving particle with params.velocity and params.spin (world frame; a toss, with
+  /// params.restitution and params.friction for its impacts) and its lowest point's height as drop_height;
+  /// the run's horizontal positions are then relative to where that point was.
   Settler(const Particle& particle, const SettleParams& params, const Quat& orientation);
   ~Settler();
   Settler(Settler&&) noexcept;
