@@ -16,6 +16,7 @@ namespace {
 using nlohmann::json;
 using repose::test::parse_json;
 using repose::test::run_cli;
+using repose::test::without_timing;
 using ::testing::HasSubstr;
 
 class TossCli : public repose::test::TempDirTest {};
@@ -25,11 +26,6 @@ constexpr int kDrops = 200;
 #else
 constexpr int kDrops = 20;  // the sanitizer build is ~200x slower; the claims hold for any count
 #endif
-
-json without_timing(json j) {
-  j.erase("timing");
-  return j;
-}
 
 TEST_F(TossCli, SettleJsonListsTheImpactsAndTheFlights) {
   // A cube dropped flat from 0.5 m with E = 0.5: the first impact at sqrt(2·g·0.5) m/s, rebounding at half
