@@ -145,8 +145,11 @@ ImpactOutcome collide(double mass, const Mat3& inertia, const Vec3& r, const Mot
     if (restitution) {
       const double need = std::max(0.0, target - work);
       const double a = du.z(), b = std::max(u.z(), 0.0);
-      const double to_end =
-          a > 0 ? need / (0.5 * (b + std::sqrt(b * b + 2 * a * need))) : (b > 0 ? need / b : INFINITY);
+      // Nothing left to do (a grazing impact whose compression did no work) ends at once, not at 0/0.
+      const double to_end = need <= 0 ? 0.0
+                            : a > 0   ? need / (0.5 * (b + std::sqrt(b * b + 2 * a * need)))
+                            : b > 0   ? need / b
+                                      : INFINITY;
       if (to_end <= dp) {
         dp = to_end;
         event = finished;

@@ -161,6 +161,17 @@ TEST(RigidImpact, FrictionlessImpactReversesTheNormalSpeedTimesE) {
   EXPECT_NEAR(kinetic_energy(m, inertia, elastic.after), kinetic_energy(m, inertia, {v, w}), 1e-12);
 }
 
+TEST(RigidImpact, ARestitutionWhoseSquareUnderflowsEndsLikeAPlasticImpact) {
+  // E = 1e-200: E² is 0 in double precision, so restitution has no work to do and must end at once (not run
+  // into the integration's step bound and the frictionless fallback).
+  const Planar c = rod(2.0, 0.1, 0.0);
+  Planar tiny = c;
+  tiny.e = 1e-200;
+  const ImpactOutcome plastic = collide_planar(c), almost = collide_planar(tiny);
+  EXPECT_FALSE(almost.fallback);
+  EXPECT_NEAR((almost.impulse - plastic.impulse).norm(), 0, 1e-12);
+}
+
 TEST(RigidImpact, APointLeavingTheWallIsNotStruck) {
   const Mat3 inertia = Mat3::Identity();
   const ImpactOutcome out =
