@@ -245,6 +245,22 @@ ConvexHull compute_convex_hull(const std::vector<Vec3>& points) {
     for (std::size_t k = 0; k < face.loop.size(); ++k)
       hull.neighbor_list[static_cast<std::size_t>(fill[static_cast<std::size_t>(face.loop[k])]++)] =
           face.loop[(k + 1) % face.loop.size()];
+  // Every face's plane supports the hull. A sliver facet among points of very different magnitudes (found
+  // by fuzz_mesh_ply: coordinates from 1 to 5e34, three vertices 1e-6·D apart) can get a plane with another
+  // vertex 4e-6·D outside it; its offset is then raised to that vertex (walked to uphill on the edge graph).
+  // Only a defect far above round-off (1e-12·D) is mended, so a well-conditioned hull is unchanged to the
+  // bit.
+  Vec3 lo = hull.vertices.front(), hi = lo;
+  for (const Vec3& p : hull.vertices) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double slack = 1e-12 * (hi - lo).norm();
+  for (HullFace& face : hull.faces) {
+    const int top = hull.support_vertex_from(face.normal, face.loop.front());
+    const double reach = face.normal.dot(hull.vertices[static_cast<std::size_t>(top)]);
+    if (reach > face.offset + slack) face.offset = reach;
+  }
   return hull;
 }
 
