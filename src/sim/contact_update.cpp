@@ -190,7 +190,7 @@ void Settler::Impl::choose_support(const sim::LineFit& fit, const Vec2& g, const
       axis = support.axis;
     else if (type == ContactType::surface && has_prev_axis)
       axis = prev_axis;
-    if (line && line_is_supported(o, axis)) {
+    if (line && line_support(o, axis).holds) {
       line_at(o, axis);
     } else {
       point_at(o);
@@ -226,12 +226,23 @@ void Settler::Impl::choose_support(const sim::LineFit& fit, const Vec2& g, const
 // that the line constraint removes (the component normal to the axis); otherwise the particle would tip
 // about O away from them, and it rotates about the point instead. Without this, a line tilted by up to ε
 // would act as a frictionless hinge on which the particle swings like a pendulum for ever.
-bool Settler::Impl::line_is_supported(int o, const Vec3& axis) const {
+//
+// The reach (decisions.cpp): while the particle turns about this line, every offset d from O keeps d·e and
+// |d|, so only the weight's moment and the hovering points' lever turn; the tests on them are signs of
+// quantities whose rate per radian is bounded by the product rule (|dc/dθ| ≤ |c| for any vector c turning
+// about e): |normal part| and |moment| move at most m·g·|c| per radian (c: centre of mass − O), and
+// −normal·arm at most 2·m·g·|c|·|lever|.
+Settler::Impl::LineSupport Settler::Impl::line_support(int o, const Vec3& axis) const {
   const Vec3 origin = world_vertex(o);
   const Vec3 e = axis.normalized();
-  const Vec3 moment = (com - origin).cross(Vec3(0, 0, -body.mass * params.gravity));
+  const double weight = body.mass * params.gravity;
+  const Vec3 moment = (com - origin).cross(Vec3(0, 0, -weight));
   const Vec3 normal_part = moment - moment.dot(e) * e;
-  if (normal_part.norm() <= 1e-9 * moment.norm()) return true;
+  const double weight_arm = weight * (com - origin).norm();  // bounds |moment| and its rate per radian
+  const double small = normal_part.norm() - 1e-9 * moment.norm();
+  // The rate of `small` per radian is at most (1 + 1e-9)·weight_arm; a relative 1e-12 covers round-off.
+  const double small_reach = (std::abs(small) - 1e-12 * weight_arm) / (2 * weight_arm);
+  if (small <= 0) return {true, small_reach};
   bool ahead = false, behind = false;
   Vec3 lever = Vec3::Zero();
   // contact_points[i] is world_vertex(contact[i]) at this pose: both callers have just filled them.
@@ -243,10 +254,14 @@ bool Settler::Impl::line_is_supported(int o, const Vec3& axis) const {
     behind = behind || s < -touch_tol;
     lever += d;
   }
-  if (ahead && behind) return true;  // hovering points on both sides of O: either sense can be held
+  if (ahead && behind)
+    return {true, INFINITY};  // hovering points on both sides of O: either sense can be held
   const Vec3 arm = lever.cross(Vec3::UnitZ());
-  if (arm.squaredNorm() == 0) return false;
-  return -normal_part.dot(arm) >= 0;  // the force needed at the hovering points is upward
+  if (arm.squaredNorm() == 0) return {false, 0};
+  const double need = -normal_part.dot(arm);  // the force needed at the hovering points is upward
+  const double scale = weight_arm * lever.norm();
+  const double need_reach = (std::abs(need) - 1e-12 * scale) / (2 * scale);
+  return {need >= 0, std::min(small_reach, need_reach)};
 }
 
 // After the support or the pose changed: the lowest vertex's depth, if any, counts as penetration. The

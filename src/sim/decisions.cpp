@@ -15,7 +15,15 @@ namespace repose {
 // stability test passes, whether a line support still holds. Between membership events these change
 // continuously with the pose (the footprints and the centre of mass move), so each is a root of its own.
 // (A point reaching the wall is a touch event of its own, located from below the wall, not here.)
-Settler::Impl::Decision Settler::Impl::decision_at(const Quat& qq) {
+//
+// With `with_reach`, also how far the pose can turn before one of them can change (Decision::reach): each is
+// the sign of a margin whose rate per radian turned is bounded, because a point at distance r from the
+// pivot moves by at most r per radian. The type: sqrt of the fit's residual is the smallest singular value
+// of the centred footprints, which moves by at most sqrt(Σ r_k²) (Weyl; centring and the projection on the
+// wall do not lengthen a displacement). The hold and the stability test: the distance of the centre of
+// mass's footprint to the boundary of a convex polygon moves by at most r_g + max r_k. The line's support:
+// line_support. A step whose swept angle is bounded below the reach needs no check inside it.
+Settler::Impl::Decision Settler::Impl::decision_at(const Quat& qq, bool with_reach) {
   const Quat q_now = q;
   const Vec3 com_now = com;
   q = qq;
@@ -38,22 +46,79 @@ Settler::Impl::Decision Settler::Impl::decision_at(const Quat& qq) {
   }
   const Vec2 g(com.x(), com.y());
   Decision d;
-  d.type = smooth ? ContactType::point : sim::classify_contact(footprints, rss_threshold);
-  d.hold = (!smooth || touching.size() >= 3) && touching_points_hold(g);
-  d.stable = !smooth && !finishing && stability_margin(contact_points, g) > 0;
-  d.line_holds = support.line && line_is_supported(support_vertex, support.axis);
+  sim::LineFit fit;
+  d.type = smooth ? ContactType::point : sim::classify_contact(footprints, rss_threshold, &fit);
+  double hold_margin = -INFINITY;
+  std::size_t hold_corners = 0;
+  if (touching.size() >= 3) {
+    const std::vector<Vec2> poly = touching_polygon();
+    hold_corners = poly.size();
+    hold_margin = sim::polygon_margin(poly, g);
+  }
+  d.hold = hold_corners >= 3 && hold_margin > -touch_tol;  // touching_points_hold(g)
+  const double stability = !smooth && !finishing ? stability_margin(contact_points, g) : -INFINITY;
+  d.stable = stability > 0;
+  const LineSupport line = support.line ? line_support(support_vertex, support.axis) : LineSupport{};
+  d.line_holds = support.line && line.holds;
+  if (with_reach) {
+    const double slack = kReachSlack * length;
+    const double r_g = support.body.norm();
+    double r_max = 0, r2_sum = 0, r_touch = 0;
+    for (int k : contact) {
+      const double r = (particle.hull.vertices[k] - support.body).norm();
+      r_max = std::max(r_max, r);
+      r2_sum += r * r;
+    }
+    for (int k : touching) r_touch = std::max(r_touch, (particle.hull.vertices[k] - support.body).norm());
+    auto reach = [&](double room, double rate) {
+      const double r = (room - slack) / rate;
+      return r > 0 ? r : 0.0;  // (NaN too: no reach)
+    };
+    d.reach_of.fill(INFINITY);
+    if (!smooth && contact.size() >= 2)
+      d.reach_of[0] = reach(std::abs(std::sqrt(fit.rss) - std::sqrt(rss_threshold)), std::sqrt(r2_sum));
+    // A polygon of fewer than three corners (collinear within the hull's tolerance) holds nothing until the
+    // centre of mass's footprint comes within touch_tol of it.
+    if (touching.size() >= 3)
+      d.reach_of[1] = reach(hold_corners >= 3 ? std::abs(hold_margin + touch_tol) : -hold_margin - touch_tol,
+                            r_g + r_touch);
+    if (std::isfinite(stability)) d.reach_of[2] = reach(std::abs(stability), r_g + r_max);
+    if (support.line) d.reach_of[3] = line.reach > 0 ? line.reach : 0.0;
+  }
   if (own_set) contact.swap(decision_set);
   q = q_now;
   com = com_now;
   return d;
 }
 
+// Whether the contact set the decisions are taken on stays the same while the particle turns by at most
+// `arc` from the step's start: before the stability test passes it changes only at events; after, a vertex
+// joins or leaves it where its height crosses the band's level, and the step's event candidates (their
+// heights at the start in z) are every vertex that could reach that level within the step.
+bool Settler::Impl::contact_set_holds(double arc) const {
+  if (!band_crossings_in_decisions()) return true;
+  const double level = band + touch_tol, slack = kReachSlack * length;
+  for (int k : event_candidates)
+    if (std::abs(z[k] - level) - slack <= arc * (particle.hull.vertices[k] - support.body).norm())
+      return false;
+  return true;
+}
+
 // If the contact decisions at `t_end` differ from those at the step's start `t0`, the step is cut just after
 // the first change (bisection on the dense output): the contact update then decides there, as the paper's
 // fixed step does at dt → 0.
 void Settler::Impl::locate_decision_change(double t0, double t_end, std::span<const double> inner) {
-  const Decision start = decision_cached ? cached_decision : decision_at(rot.q);
+  const Decision start = decision_cached ? cached_decision : decision_at(rot.q, true);
   decision_cached = false;
+  // A step too short to turn the particle by the decisions' reach cannot change them: no check inside it,
+  // and the end's reach is what is left of the start's.
+  const double arc = arc_bound(t_end - t0);
+  if (arc < start.reach() && contact_set_holds(arc)) {
+    cached_decision = start;
+    for (double& r : cached_decision.reach_of) r -= arc;
+    end_decision_known = !step_event;
+    return;
+  }
   // The step's inner sample instants first, so that a decision that changes and changes back within the
   // step (the stability test passing for a moment) is still seen; then its end.
   double lo = t0, hi = t_end;
@@ -69,7 +134,7 @@ void Settler::Impl::locate_decision_change(double t0, double t_end, std::span<co
     lo = ts;
   }
   if (!changed) {
-    const Decision end = decision_at(integrator->orientation_at(t_end));
+    const Decision end = decision_at(integrator->orientation_at(t_end), true);
     end_decision_known = !step_event && end == start;
     const double pass = end == start && !start.stable ? brief_stability_pass(t0, t_end) : -1;
     if (end == start && pass < 0) {

@@ -212,12 +212,23 @@ struct Settler::Impl {
   struct Decision {
     ContactType type = ContactType::point;
     bool hold = false, stable = false, line_holds = false;
-    bool operator==(const Decision&) const = default;
+    // With decision_at(…, true), for each of the four above in turn: the angle (rad) the particle can turn
+    // about its support before it can change, for the contact set it was taken on (0: unknown). Not part of
+    // the decision.
+    std::array<double, 4> reach_of{};
+    double reach() const { return std::min({reach_of[0], reach_of[1], reach_of[2], reach_of[3]}); }
+    bool operator==(const Decision& o) const {
+      return type == o.type && hold == o.hold && stable == o.stable && line_holds == o.line_holds;
+    }
   };
-  Decision decision_at(const Quat& qq);  // decisions.cpp, as the three below
-  Decision cached_decision;              // the decisions at the current step's start, if decision_cached
-  bool decision_cached = false;          // (set when the last update changed nothing they depend on)
-  bool end_decision_known = false;       // the last step ended without an event, its end decisions known
+  // A margin within this much (× L) of its threshold gives no reach: the 2-D hull's tolerances and round-off
+  // act there.
+  static constexpr double kReachSlack = 1e-6;
+  Decision decision_at(const Quat& qq, bool with_reach = false);  // decisions.cpp, as the four below
+  bool contact_set_holds(double arc) const;
+  Decision cached_decision;         // the decisions at the current step's start, if decision_cached
+  bool decision_cached = false;     // (set when the last update changed nothing they depend on)
+  bool end_decision_known = false;  // the last step ended without an event, its end decisions known
   std::vector<int> decision_contact, decision_touching;  // scratch: the sets before an update
   std::vector<int> decision_set;                         // scratch: the contact set at a decision's pose
   void locate_decision_change(double t0, double t_end, std::span<const double> inner);
@@ -235,7 +246,11 @@ struct Settler::Impl {
   void set_type(ContactType new_type);
   double stability_margin(const std::vector<Vec3>& contact_points, const Vec2& g) const;
   void choose_support(const sim::LineFit& fit, const Vec2& g, const Vec3& omega, const Vec3& com_velocity);
-  bool line_is_supported(int o, const Vec3& axis) const;  // on contact_points, filled for `contact`
+  struct LineSupport {
+    bool holds = false;
+    double reach = 0;  // the angle (rad) about the line before `holds` can change (decisions.cpp)
+  };
+  LineSupport line_support(int o, const Vec3& axis) const;  // on contact_points, filled for `contact`
   void note_penetration();
   void remember_axis(const Vec3& omega);
   int nearest_touching(const Vec2& p) const;

@@ -122,8 +122,11 @@ class Settler {
   Status status() const;
   SettleResult result() const;  ///< the summary so far (final once status() != running)
 
- private:
+  /// The engine's per-run state, defined internally (src/sim/settler.hpp); named here only so that the
+  /// engine's white-box tests can build one.
   struct Impl;
+
+ private:
   std::unique_ptr<Impl> impl_;
 };
 
