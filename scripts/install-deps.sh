@@ -11,6 +11,7 @@ packages=(
   libopenmpi-dev openmpi-bin  # the MPI runner (mpirun -np K repose poses); builds without it too
   clang libclang-rt-14-dev  # scripts/fuzz.sh: the clang driver and libFuzzer + sanitizer runtimes
   python3 python3-matplotlib python3-scipy  # scipy: independent ODE reference in the physics tests
+  python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest  # the Python package (python/)
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -15,4 +15,10 @@ class Error : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A run stopped because its caller asked it to (EnsembleOptions::cancel): not a failure of the input.
+class Cancelled : public Error {
+ public:
+  using Error::Error;
+};
+
 }  // namespace repose

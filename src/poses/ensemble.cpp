@@ -190,6 +190,7 @@ EnsembleTally run_ensemble(const Particle& particle, const RestLandscape& landsc
                       [&](const tbb::blocked_range<std::uint64_t>& block) {
                         PartialTally local(catalog.poses.size());
                         for (std::uint64_t i = block.begin(); i != block.end(); ++i) {
+                          if (options.cancel && options.cancel->load(std::memory_order_relaxed)) return;
                           local.add(i, run_drop(i));
                           if (options.progress) options.progress->fetch_add(1, std::memory_order_relaxed);
                         }
@@ -197,6 +198,8 @@ EnsembleTally run_ensemble(const Particle& particle, const RestLandscape& landsc
                         total.absorb(local);
                       });
   });
+
+  if (options.cancel && options.cancel->load()) throw Cancelled("interrupted");
 
   // A pose's representative is its first drop's final orientation; if that drop stopped early, finish it.
   for (std::size_t p = 0; p < catalog.poses.size() && options.finish_representatives; ++p) {

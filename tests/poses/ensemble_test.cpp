@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "repose/error.hpp"
@@ -219,6 +220,23 @@ TEST(Ensemble, WilsonIntervalMatchesPublishedValues) {
   const auto d = wilson_interval(999'999'999'999'999, 1'000'000'000'000'000, 10.0);
   EXPECT_LE(d[1], 1.0);
   EXPECT_GT(d[1], 1.0 - 1e-12);
+}
+
+// A caller's cancel flag (Ctrl-C in Python) stops a run between drops with repose::Cancelled; an unset or
+// false flag changes nothing.
+TEST(Ensemble, ACancelledRunStopsWithCancelled) {
+  const Study s("box:x=1,y=1,z=1");
+  EnsembleOptions o;
+  o.drops = {0, 200};
+  o.threads = 2;
+  const EnsembleTally plain = run_ensemble(s.particle, s.landscape, s.catalog, o);
+  std::atomic<bool> cancel{false};
+  o.cancel = &cancel;
+  const EnsembleTally watched = run_ensemble(s.particle, s.landscape, s.catalog, o);
+  for (std::size_t p = 0; p < plain.poses.size(); ++p)
+    EXPECT_EQ(plain.poses[p].count, watched.poses[p].count);
+  cancel = true;
+  EXPECT_THROW(run_ensemble(s.particle, s.landscape, s.catalog, o), Cancelled);
 }
 
 TEST(Ensemble, RejectsBadOptions) {

@@ -52,6 +52,9 @@ struct EnsembleOptions {
   bool finish_representatives = true;
   int threads = 0;                                 ///< 0 = all cores
   std::atomic<std::uint64_t>* progress = nullptr;  ///< if set, incremented once per finished drop
+  /// If set, read between drops: once true, the run stops and throws repose::Cancelled (an interrupt from
+  /// the caller, e.g. Ctrl-C in Python).
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 /// What one pose collected.

@@ -1,0 +1,202 @@
+"""The Python package against the command line and against closed forms (issue 15).
+
+The CLI's --json and the Python results come from the same library serialiser, so they must be equal to the
+bit: every comparison with the CLI is exact (==), never approximate. Physical checks use independent
+references: the unit cube's inertia (m/6 on the diagonal), the tetrahedron's and the cube's quasi-static
+probabilities by symmetry (1/4 and 1/6), a unit quaternion, an energy that damping never raises.
+Run with: PYTHONPATH=<build>/python REPOSE_CLI=<build>/apps/repose/repose python3 -m pytest python/tests
+"""
+import json
+import os
+import pathlib
+import subprocess
+import threading
+import time
+import _thread
+
+import numpy as np
+import pytest
+
+import repose
+
+CLI = os.environ.get("REPOSE_CLI", "repose")
+DATA = pathlib.Path(__file__).resolve().parents[2] / "tests" / "data"
+
+
+def cli_json(*args):
+    out = subprocess.run([CLI, *args, "--json"], capture_output=True, text=True)
+    assert out.returncode in (0, 3), out.stderr
+    return json.loads(out.stdout)
+
+
+def without_timing(d):
+    d = dict(d)
+    d.pop("timing", None)
+    return d
+
+
+def test_the_readme_example_rests():
+    r = repose.settle(repose.Particle.shape("tetrahedron:edge=1"), [1, 0, 0, 0])
+    assert r.status == "rest"
+
+
+@pytest.mark.parametrize("shape,orientation,options", [
+    ("tetrahedron:edge=1", "axis-angle:1,2,3,0.7", {}),
+    ("box:x=1,y=2,z=3", "quat:0.9,0.3,-0.2,0.1", {"damping": 0.5}),
+    ("cylinder:r=0.5,h=1,n=32", "axis-angle:1,0,0,1.0", {"damping": 0.2, "drop_height": 0.3}),
+    ("irregular:seed=3", "axis-angle:0,1,1,2.0", {"damping": 0.01, "integrator": "paper"}),
+    ("box:x=1,y=1,z=1", "axis-angle:1,1,0,0.4", {"velocity": [1.0, 0.5, 0.0], "spin": [0, 2.0, 1.0],
+                                                  "restitution": 0.5, "friction": 0.3}),
+])
+def test_settle_equals_the_cli_json(shape, orientation, options):
+    args = ["settle", shape, "--orientation", orientation]
+    for k, v in options.items():
+        args += ["--" + k.replace("_", "-"), ",".join(map(repr, v)) if isinstance(v, list) else str(v)]
+    expected = cli_json(*args)
+    got = repose.settle(repose.Particle.shape(shape), orientation, **options).to_dict()
+    assert got == expected
+
+
+def test_orientation_as_numbers_equals_the_spec():
+    p = repose.Particle.shape("box:x=1,y=2,z=3")
+    a = repose.settle(p, [0.9, 0.3, -0.2, 0.1], damping=0.5).to_dict()
+    b = repose.settle(p, "quat:0.9,0.3,-0.2,0.1", damping=0.5).to_dict()
+    assert a == b
+
+
+def test_poses_equal_the_cli_json():
+    expected = cli_json("poses", "box:x=1,y=2,z=3", "-n", "600", "--seed", "7", "--threads", "2")
+    got = repose.poses(repose.Particle.shape("box:x=1,y=2,z=3"), n=600, seed=7, threads=2)
+    assert without_timing(got.to_dict()) == without_timing(expected)
+    assert sum(p.count for p in got.poses) == 600
+    assert abs(got.probabilities.sum() - 1) < 1e-12
+
+
+def test_tossed_poses_equal_the_cli_json():
+    args = ["poses", "tetrahedron:edge=1", "-n", "200", "--restitution", "0.4", "--friction", "0.5",
+            "--velocity-max", "1", "--spin-max", "3", "--drop-height", "0.5"]
+    expected = cli_json(*args)
+    got = repose.poses(repose.Particle.shape("tetrahedron:edge=1"), n=200, restitution=0.4, friction=0.5,
+                       velocity_max=1.0, spin_max=3.0, drop_height=0.5)
+    assert without_timing(got.to_dict()) == without_timing(expected)
+
+
+def test_poses_do_not_depend_on_the_thread_count():
+    p = repose.Particle.shape("irregular:seed=3")
+    one = repose.poses(p, n=300, threads=1).to_dict()
+    two = repose.poses(p, n=300, threads=2).to_dict()
+    assert without_timing(one) == without_timing(two)
+
+
+def test_quasi_static_probabilities_by_symmetry():
+    tetra = repose.quasi_static(repose.Particle.shape("tetrahedron:edge=1"))
+    cube = repose.quasi_static(repose.Particle.shape("box:x=1,y=1,z=1"))
+    # Exact basin areas: each face of a regular solid has the same share; 1e-12 is round-off.
+    assert [round(p.quasi_static_probability, 12) for p in tetra] == [0.25] * 4
+    assert np.allclose([p.quasi_static_probability for p in cube], 1 / 6, rtol=0, atol=1e-12)
+    expected = cli_json("poses", "box:x=1,y=2,z=3", "-n", "1", "--method", "quasi-static")
+    got = repose.quasi_static(repose.Particle.shape("box:x=1,y=2,z=3"))
+    assert sorted(p.quasi_static_probability for p in got) == \
+        sorted(p["quasi_static_probability"] for p in expected["poses"])
+
+
+def test_unit_cube_from_arrays():
+    v = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=float)
+    f = np.array([[0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5], [0, 4, 5], [0, 5, 1],
+                  [2, 3, 7], [2, 7, 6], [0, 2, 6], [0, 6, 4], [1, 5, 7], [1, 7, 3]])
+    p = repose.Particle.from_arrays(v, f, density=2.0)
+    assert p.mass == pytest.approx(2.0, rel=1e-14)
+    assert np.allclose(p.com, [0.5, 0.5, 0.5], atol=1e-15)
+    # A cube of side a and mass m: I = m·a²/6 about every axis through its centre.
+    assert np.allclose(p.inertia, np.eye(3) * 2.0 / 6, atol=1e-14)
+    assert p.length == pytest.approx((6 / np.pi) ** (1 / 3), rel=1e-14)
+    assert len(p.hull_vertices) == 8 and len(p.hull_faces) == 6
+
+
+def test_a_mesh_in_millimetres():
+    metres = repose.Particle.load(str(DATA / "cube.off"))
+    mm = repose.Particle.load(str(DATA / "cube.off"), units="mm")
+    assert mm.length == pytest.approx(metres.length * 1e-3, rel=1e-14)
+    assert mm.volume == pytest.approx(metres.volume * 1e-9, rel=1e-13)
+
+
+def test_the_time_series():
+    p = repose.Particle.shape("box:x=1,y=2,z=3")
+    r = repose.settle(p, "axis-angle:1,1,1,0.9", damping=1.0)
+    s = r.series
+    n = len(s)
+    assert n > 10
+    assert s.t.shape == (n,) and s.quaternion.shape == (n, 4) and s.omega.shape == (n, 3)
+    assert s.com.shape == (n, 3) and s.contact.shape == (n,) and s.contact_count.shape == (n,)
+    assert np.all(np.diff(s.t) > 0)
+    assert np.allclose(np.linalg.norm(s.quaternion, axis=1), 1, atol=1e-12)
+    # Damping only removes energy: the total never rises by more than the integrator's error (tolerance
+    # 1e-9 relative to m·g·L per step; 1e-6·m·g·L over the run is a generous bound).
+    energy = s.kinetic_energy + s.potential_energy
+    assert np.all(np.diff(energy) <= 1e-6 * p.mass * 9.81 * p.length)
+    assert s.t[-1] == pytest.approx(r.time_to_rest, rel=1e-12)
+    assert set(s.contact) <= {"free_fall", "point", "line", "surface", "flight"}
+
+
+def test_the_stepwise_engine_ends_as_settle_does():
+    p = repose.Particle.shape("irregular:seed=3")
+    s = repose.Settler(p, "axis-angle:0,1,1,2.0", damping=0.01)
+    steps = 0
+    while s.step():
+        steps += 1
+        assert steps < 1_000_000
+    assert s.status == "rest"
+    assert s.result().to_dict() == repose.settle(p, "axis-angle:0,1,1,2.0", damping=0.01).to_dict()
+
+
+def test_advance_to_a_dem_step():
+    p = repose.Particle.shape("tetrahedron:edge=1")
+    s = repose.Settler(p, "axis-angle:1,0,0,0.5", damping=0.1)
+    s.advance_to(0.05)
+    assert s.sample()["t"] == pytest.approx(0.05, abs=1e-15)
+
+
+@pytest.mark.parametrize("call,message", [
+    (lambda: repose.Particle.shape("box:x=-1,y=1,z=1"), "box"),
+    (lambda: repose.Particle.load("/nonexistent/grain.stl"), "/nonexistent/grain.stl"),
+    (lambda: repose.Particle.shape("box:x=1,y=1,z=1", density=-2), "density"),
+    (lambda: repose.settle(repose.Particle.shape("box:x=1,y=1,z=1"), damping=-1), "damping"),
+    (lambda: repose.settle(repose.Particle.shape("box:x=1,y=1,z=1"), dampnig=1), "unknown parameter 'dampnig'"),
+    (lambda: repose.settle(repose.Particle.shape("box:x=1,y=1,z=1"), "quat:0,0,0,0"), "quat"),
+    (lambda: repose.poses(repose.Particle.shape("box:x=1,y=1,z=1"), n=0), "n >= 1"),
+    (lambda: repose.Particle.load(str(DATA / "open_cube.off")), "--inertia"),
+])
+def test_bad_input_is_a_value_error_with_one_line(call, message):
+    with pytest.raises(ValueError) as error:
+        call()
+    text = str(error.value)
+    assert message in text and "\n" not in text
+
+
+def test_ctrl_c_stops_a_long_study():
+    p = repose.Particle.shape("irregular:seed=3")
+    timer = threading.Timer(0.3, _thread.interrupt_main)
+    start = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        repose.poses(p, n=10_000_000, threads=2)
+    timer.cancel()
+    assert time.monotonic() - start < 10  # the whole study would take minutes
+
+
+def test_the_gil_is_released_during_a_run():
+    p = repose.Particle.shape("irregular:seed=3")
+    ticks = []
+    stop = threading.Event()
+
+    def count():
+        while not stop.is_set():
+            ticks.append(1)
+            time.sleep(0.001)
+
+    worker = threading.Thread(target=count)
+    worker.start()
+    repose.poses(p, n=2000, threads=1)
+    stop.set()
+    worker.join()
+    assert len(ticks) > 10
