@@ -88,7 +88,8 @@ void print_info(const Particle& p, double density) {
   else
     std::cout << "volume              " << num(p.mass.volume) << "\n";
   std::cout << "mass                " << num(p.mass.mass) << "\n"
-            << "centre of mass      " << vec(p.input_offset) << "\n"
+            << "centre of mass      " << vec(p.input_offset)
+            << (p.options.center_of_mass ? " (given, --com; inertia: the model's about it)" : "") << "\n"
             << "inertia about COM   " << vec(p.mass.inertia.row(0)) << "\n"
             << "                    " << vec(p.mass.inertia.row(1)) << "\n"
             << "                    " << vec(p.mass.inertia.row(2)) << "\n"

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "format.hpp"
 #include "repose/model/particle.hpp"
 
 namespace repose::cli {
@@ -15,6 +16,7 @@ struct MeshCliOptions {
   std::string inertia = "exact";
   bool repair = false;
   bool largest_component = false;
+  std::string com;  ///< --com X,Y,Z; empty: none given
 
   /// The library's options; `cgs`: lengths of the run are centimetres (--units cgs), so --mesh-units
   /// converts to them.
@@ -24,6 +26,7 @@ struct MeshCliOptions {
     m.inertia = parse_inertia_model(inertia);
     m.repair = repair;
     m.largest_component = largest_component;
+    if (!com.empty()) m.center_of_mass = parse_vector("--com", com);
     return m;
   }
 };
@@ -48,6 +51,9 @@ inline void add_mesh_options(CLI::App& sub, MeshCliOptions& o) {
                "faces, fill holes (CGAL)");
   sub.add_flag("--largest-component", o.largest_component,
                "Keep only the largest connected component (repairs as --repair does)");
+  sub.add_option("--com", o.com,
+                 "X,Y,Z: the centre of mass in the mesh file's coordinates, when known (a weighted or hollow "
+                 "part); the inertia is then the uniform model's about that point");
 }
 
 }  // namespace repose::cli

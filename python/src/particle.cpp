@@ -18,7 +18,7 @@ namespace repose::python {
 namespace {
 
 MeshOptions mesh_options(double scale, const std::optional<std::string>& units, const std::string& inertia,
-                         bool repair, bool largest_component) {
+                         bool repair, bool largest_component, const std::optional<std::vector<double>>& com) {
   if (!std::isfinite(scale) || scale <= 0)
     throw Error("scale must be a finite number > 0, got " + std::to_string(scale));
   MeshOptions o;
@@ -26,6 +26,10 @@ MeshOptions mesh_options(double scale, const std::optional<std::string>& units, 
   o.inertia = parse_inertia_model(inertia);
   o.repair = repair || largest_component;
   o.largest_component = largest_component;
+  if (com) {
+    if (com->size() != 3) throw Error("com must be three numbers x, y, z (the centre of mass)");
+    o.center_of_mass = Vec3((*com)[0], (*com)[1], (*com)[2]);
+  }
   return o;
 }
 
@@ -35,16 +39,18 @@ void check_density(double density) {
 }
 
 PyParticle load(const std::string& source, double density, const std::optional<std::string>& units,
-                double scale, const std::string& inertia, bool repair, bool largest_component) {
+                double scale, const std::string& inertia, bool repair, bool largest_component,
+                const std::optional<std::vector<double>>& com) {
   check_density(density);
-  const MeshOptions options = mesh_options(scale, units, inertia, repair, largest_component);
+  const MeshOptions options = mesh_options(scale, units, inertia, repair, largest_component, com);
   py::gil_scoped_release release;  // a large scan takes seconds
   return {std::make_shared<const Particle>(load_particle(source, density, options)), density};
 }
 
 PyParticle from_arrays(const py::array_t<double, py::array::c_style | py::array::forcecast>& vertices,
                        const py::array_t<long long, py::array::c_style | py::array::forcecast>& faces,
-                       double density, const std::string& inertia, bool repair, const std::string& name) {
+                       double density, const std::string& inertia, bool repair, const std::string& name,
+                       const std::optional<std::vector<double>>& com) {
   check_density(density);
   if (vertices.ndim() != 2 || vertices.shape(1) != 3)
     throw Error(name + ": vertices must be an array of shape (N, 3)");
@@ -68,7 +74,7 @@ PyParticle from_arrays(const py::array_t<double, py::array::c_style | py::array:
       mesh.triangles.push_back(t);
     }
   }
-  const MeshOptions options = mesh_options(1.0, std::nullopt, inertia, repair, false);
+  const MeshOptions options = mesh_options(1.0, std::nullopt, inertia, repair, false, com);
   py::gil_scoped_release release;
   return {std::make_shared<const Particle>(make_particle(std::move(mesh), name, density, options)), density};
 }
@@ -87,10 +93,10 @@ void bind_particle(py::module_& m) {
   py::class_<PyParticle>(m, "Particle")
       .def_static("load", &load, py::arg("source"), py::arg("density") = 1.0, py::arg("units") = py::none(),
                   py::arg("scale") = 1.0, py::arg("inertia") = "exact", py::arg("repair") = false,
-                  py::arg("largest_component") = false)
+                  py::arg("largest_component") = false, py::arg("com") = py::none())
       .def_static("from_arrays", &from_arrays, py::arg("vertices"), py::arg("faces"),
                   py::arg("density") = 1.0, py::arg("inertia") = "exact", py::arg("repair") = false,
-                  py::arg("name") = "arrays")
+                  py::arg("name") = "arrays", py::arg("com") = py::none())
       .def_property_readonly("name", [](const PyParticle& p) { return p.model->name; })
       .def_property_readonly("density", [](const PyParticle& p) { return p.density; })
       .def_property_readonly("mass", [](const PyParticle& p) { return p.model->mass.mass; })

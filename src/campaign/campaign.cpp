@@ -123,14 +123,23 @@ std::vector<PosesStudy> run_campaign(const std::function<std::vector<CampaignPar
     json j = json::array();
     for (const CampaignParticle& p : particles)
       j.push_back({p.name, p.source, p.mesh.scale, to_string(p.mesh.inertia), p.mesh.repair,
-                   p.mesh.largest_component});
+                   p.mesh.largest_component,
+                   p.mesh.center_of_mass
+                       ? json(std::vector<double>{p.mesh.center_of_mass->x(), p.mesh.center_of_mass->y(),
+                                                  p.mesh.center_of_mass->z()})
+                       : json(nullptr)});
     return j.dump();
   });
   if (!runner.is_root())
-    for (const json& p : json::parse(list))
-      particles.push_back({p.at(0).get<std::string>(), p.at(1).get<std::string>(),
-                           MeshOptions{p.at(2).get<double>(), parse_inertia_model(p.at(3).get<std::string>()),
-                                       p.at(4).get<bool>(), p.at(5).get<bool>()}});
+    for (const json& p : json::parse(list)) {
+      MeshOptions mesh{p.at(2).get<double>(), parse_inertia_model(p.at(3).get<std::string>()),
+                       p.at(4).get<bool>(), p.at(5).get<bool>(), std::nullopt};
+      if (!p.at(6).is_null()) {
+        const auto c = p.at(6).get<std::vector<double>>();
+        mesh.center_of_mass = Vec3(c.at(0), c.at(1), c.at(2));
+      }
+      particles.push_back({p.at(0).get<std::string>(), p.at(1).get<std::string>(), mesh});
+    }
 
   const int threads = options.threads > 0
                           ? options.threads

@@ -48,6 +48,15 @@ void set_principal_frame(MassProperties& props) {
 
 }  // namespace
 
+MassProperties with_center_of_mass(const MassProperties& props, const Vec3& point) {
+  MassProperties moved = props;
+  const Vec3 d = point - props.center_of_mass;
+  moved.inertia = props.inertia + props.mass * (d.squaredNorm() * Mat3::Identity() - d * d.transpose());
+  moved.center_of_mass = point;
+  set_principal_frame(moved);
+  return moved;
+}
+
 MassProperties compute_mass_properties(const TriangleMesh& mesh, double density) {
   if (!(std::isfinite(density) && density > 0)) {
     std::ostringstream msg;

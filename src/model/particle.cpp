@@ -159,6 +159,11 @@ Particle make_particle(TriangleMesh mesh, const std::string& name, double densit
   if (!(shell ? input_mass.area > 0 : input_mass.volume > 0) || !com_inside)
     throw Error(name + ": degenerate solid: its volume is too small to locate its centre of mass");
   p.input_offset = input_mass.center_of_mass;
+  if (options.center_of_mass) {
+    if (!options.center_of_mass->allFinite())
+      throw Error(name + ": the centre of mass given must be three finite numbers");
+    p.input_offset = options.scale * *options.center_of_mass;
+  }
   for (Vec3& v : mesh.vertices) v -= p.input_offset;
   p.mesh = std::move(mesh);
   p.hull = hull_of(p.mesh.vertices, name);
@@ -174,6 +179,7 @@ Particle make_particle(TriangleMesh mesh, const std::string& name, double densit
       options.inertia == InertiaModel::exact ? p.mass.volume : compute_mass_properties(hull_mesh, 1.0).volume;
   if (!(volume > 0) || !std::isfinite(volume) || !p.mass.inertia.allFinite() || !(p.mass.mass > 0))
     throw Error(name + ": degenerate solid: its volume is too small to locate its centre of mass");
+  if (options.center_of_mass) p.mass = with_center_of_mass(p.mass, Vec3::Zero());
   p.length = characteristic_length(volume);
   p.bounds = bounding_box(p.mesh.vertices);
   // A solid's centre of mass is strictly inside its convex hull. A closed, consistently wound surface of
@@ -181,9 +187,10 @@ Particle make_particle(TriangleMesh mesh, const std::string& name, double densit
   // rest pose makes sense (found by fuzz_mesh_off / fuzz_mesh_ply).
   for (const HullFace& face : p.hull.faces)
     if (!(face.offset > 0))
-      throw Error(
-          name +
-          ": not a solid: the surface intersects itself (its centre of mass is outside its convex hull)");
+      throw Error(name + (options.center_of_mass
+                              ? ": the centre of mass given (--com) is not inside the convex hull"
+                              : ": not a solid: the surface intersects itself (its centre of mass is outside "
+                                "its convex hull)"));
 
   compute_dihedral_facts(p.mesh, p.length, p.max_dihedral_angle, p.convex_surface);
   for (const HullFace& face : p.hull.faces)

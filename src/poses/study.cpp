@@ -99,6 +99,7 @@ PosesStudy prepare_study(const Particle& particle, const RestLandscape& landscap
   study.inertia = to_string(particle.options.inertia);
   study.scale = particle.options.scale;
   study.repaired = particle.repair.has_value();
+  study.center_of_mass = particle.options.center_of_mass;
   study.length = particle.length;
   study.mass = particle.mass.mass;
   study.hull_faces = static_cast<int>(particle.hull.faces.size());
@@ -146,6 +147,7 @@ std::string poses_json(const PosesStudy& s) {
   j["particle"]["inertia_model"] = s.inertia;
   j["particle"]["scale"] = s.scale;
   j["particle"]["repaired"] = s.repaired;
+  if (s.center_of_mass) j["particle"]["center_of_mass"] = vec_json(*s.center_of_mass);
   j["method"] = to_string(s.tally.method);
   j["seed"] = s.tally.seed;
   j["n"] = n;
@@ -205,6 +207,11 @@ PosesStudy parse_poses_json(const std::string& text, const std::string& name) {
       throw Error(name + ": unknown inertia model '" + s.inertia + "'");
     s.scale = particle.value("scale", 1.0);
     s.repaired = particle.value("repaired", false);
+    if (particle.contains("center_of_mass")) {
+      const auto c = particle.at("center_of_mass").get<std::vector<double>>();
+      if (c.size() != 3) throw Error(name + ": malformed poses result file (center_of_mass)");
+      s.center_of_mass = Vec3(c[0], c[1], c[2]);
+    }
     s.length = particle.at("characteristic_length").get<double>();
     s.mass = particle.at("mass").get<double>();
     s.hull_faces = whole(particle.at("hull_faces")).get<int>();
@@ -291,8 +298,9 @@ void require_same_study(const PosesStudy& a, const PosesStudy& b) {
     if (!same) throw Error("cannot merge results for different " + what);
   };
   require_same(a.source == b.source && a.density == b.density && a.inertia == b.inertia &&
-                   a.scale == b.scale && a.repaired == b.repaired && a.length == b.length &&
-                   a.mass == b.mass && a.hull_faces == b.hull_faces && a.smooth == b.smooth &&
+                   a.scale == b.scale && a.repaired == b.repaired && a.center_of_mass == b.center_of_mass &&
+                   a.length == b.length && a.mass == b.mass && a.hull_faces == b.hull_faces &&
+                   a.smooth == b.smooth &&
                    (a.fingerprint.empty() || b.fingerprint.empty() || a.fingerprint == b.fingerprint),
                "particles ('" + a.source + "' and '" + b.source + "')");
   if (a.tally.seed != b.tally.seed)

@@ -131,6 +131,18 @@ TEST_F(CampaignCli, RanksAndThreadsDoNotChangeTheResult) {
     }
 }
 
+// The mesh options travel to the other ranks with the particle list: a given centre of mass (--com) gives
+// the same result on two ranks as in one process, and a different one from the uniform box.
+TEST_F(CampaignCli, AGivenCentreOfMassReachesEveryRank) {
+  const std::string args = "poses box:x=1,y=2,z=3 -n 120 --chunk 20 --threads 1 --no-progress --json";
+  const std::string alone = without_timing(parse_json(run_cli(args + " --com 0.1,0,-0.3"))).dump();
+  const auto r = run_cli(args + " --com 0.1,0,-0.3", mpirun(2));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(without_timing(parse_json(r)).dump(), alone);
+  EXPECT_NE(without_timing(parse_json(run_cli(args))).dump(), alone);
+  EXPECT_NE(alone.find("center_of_mass"), std::string::npos);
+}
+
 TEST_F(CampaignCli, ManyParticlesAcrossRanksMatchOneProcess) {
   const std::string particles = kCube + " box:x=1,y=2,z=3 cylinder:r=0.5,h=1,n=24";
   const std::string args =

@@ -38,6 +38,43 @@ TEST(FaceStabilityMargin, BoxFacesHoldTheCentreOfMassByHalfTheirShorterSide) {
   }
 }
 
+// A centre of mass given for the part (MeshOptions::center_of_mass, --com): the unit cube centred at the
+// origin with its centre of mass at (0, 0.1, −0.4) (a weighted base). Each face's margin is the distance from
+// the centre of mass's projection to the face's boundary (closed form): the bottom face −z 0.4 (the nearest
+// edge y = 0.5 is 0.4 away), the top +z likewise 0.4, the sides ±x min(0.5 − 0.1, 0.5 − 0.4) = 0.1, −y 0.1
+// (z = −0.4 is 0.1 from the edge z = −0.5), +y 0.1. The inertia is the uniform cube's about that point
+// (parallel-axis theorem): I = m/6·1 + m·(|d|²·1 − d·dᵀ). The given point, scaled like the file, becomes the
+// input offset; a point outside the hull is refused naming --com.
+TEST(FaceStabilityMargin, AGivenCentreOfMassMovesEveryMargin) {
+  MeshOptions options;
+  options.center_of_mass = Vec3(0, 0.05, -0.2);
+  options.scale = 2;  // the cube's file coordinates are doubled: a cube of side 2, the point (0, 0.1, −0.4)
+  const Particle cube = load_particle("box:x=0.5,y=0.5,z=0.5", 1.0, options);
+  EXPECT_TRUE(cube.input_offset.isApprox(Vec3(0, 0.1, -0.4), 1e-15));
+  for (const auto& [normal, margin] : std::vector<std::pair<Vec3, double>>{{Vec3(0, 0, -1), 0.4},
+                                                                           {Vec3(0, 0, 1), 0.4},
+                                                                           {Vec3(1, 0, 0), 0.1},
+                                                                           {Vec3(-1, 0, 0), 0.1},
+                                                                           {Vec3(0, 1, 0), 0.1},
+                                                                           {Vec3(0, -1, 0), 0.1}})
+    EXPECT_NEAR(margin_of(cube, normal), margin, 1e-12) << normal.transpose();
+  const Vec3 d(0, 0.1, -0.4);
+  const Mat3 expected = Mat3::Identity() / 6 + (d.squaredNorm() * Mat3::Identity() - d * d.transpose());
+  EXPECT_TRUE(cube.mass.inertia.isApprox(expected, 1e-14)) << cube.mass.inertia;
+  EXPECT_NEAR(cube.mass.mass, 1.0, 1e-14);
+  EXPECT_TRUE(cube.mass.center_of_mass.isZero(0));
+  const Mat3 rebuilt = cube.mass.principal_axes * cube.mass.principal_moments.asDiagonal() *
+                       cube.mass.principal_axes.transpose();
+  EXPECT_TRUE(rebuilt.isApprox(expected, 1e-14));
+  options.center_of_mass = Vec3(0, 0.3, 0);  // 0.6 after scaling: outside the cube
+  try {
+    load_particle("box:x=0.5,y=0.5,z=0.5", 1.0, options);
+    ADD_FAILURE() << "a centre of mass outside the hull was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--com"), std::string::npos) << e.what();
+  }
+}
+
 TEST(FaceStabilityMargin, TetrahedronFacesHoldItByTheirInradius) {
   // Regular tetrahedron of edge a: the centre of mass projects to each face's centroid, whose distance to
   // the edges is the inradius of the equilateral triangle, a/(2√3).

@@ -110,6 +110,23 @@ TEST(PosesStudyFile, TheIntegratorIsASettingThatRoundTripsAndBlocksMerging) {
   EXPECT_EQ(parse_poses_json(old, "old.json").params.integrator, Integrator::paper);
 }
 
+// A centre of mass given for the particle is part of its identity in a result file: written, read back, and
+// results with another (or none) do not merge.
+TEST(PosesStudyFile, AGivenCentreOfMassRoundTripsAndBlocksMerging) {
+  MeshOptions options;
+  options.center_of_mass = Vec3(0.1, 0, -0.2);
+  const Particle weighted = load_particle("box:x=1,y=2,z=3", 1.0, options);
+  const Particle plain = load_particle("box:x=1,y=2,z=3", 1.0);
+  const PosesStudy a = prepare_study(weighted, compute_rest_landscape(weighted), StudySettings{});
+  const PosesStudy b = prepare_study(plain, compute_rest_landscape(plain), StudySettings{});
+  const PosesStudy back = parse_poses_json(poses_json(a), "a.json");
+  ASSERT_TRUE(back.center_of_mass.has_value());
+  EXPECT_EQ(*back.center_of_mass, Vec3(0.1, 0, -0.2));
+  EXPECT_FALSE(parse_poses_json(poses_json(b), "b.json").center_of_mass.has_value());
+  EXPECT_THROW(require_same_study(a, b), Error);
+  EXPECT_NO_THROW(require_same_study(a, back));
+}
+
 // The CSV and the table of a result give each pose's probability with its 95 % Wilson interval, against the
 // closed form (p + z²/2n ± z·sqrt(p(1 − p)/n + z²/4n²))/(1 + z²/n), z = 1.959963984540054, to 1e-15 (the CSV
 // prints 17 digits) and to the table's 5 decimals.

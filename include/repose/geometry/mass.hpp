@@ -27,4 +27,10 @@ MassProperties compute_mass_properties(const TriangleMesh& mesh, double density)
 /// centre, as above.
 MassProperties compute_shell_properties(const TriangleMesh& mesh, double areal_density);
 
+/// The mass properties of a body known only to have its centre of mass at `point` (a weighted, hollow or
+/// non-uniform part): the same mass, `point` as the centre of mass, and as inertia `props`'s distribution
+/// taken about `point` (the parallel-axis theorem, I + m·(|d|²·1 − d·dᵀ), d = point − centre): the best
+/// guess the shape alone gives. Principal moments and axes are recomputed.
+MassProperties with_center_of_mass(const MassProperties& props, const Vec3& point);
+
 }  // namespace repose

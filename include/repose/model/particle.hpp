@@ -34,6 +34,10 @@ struct MeshOptions {
   InertiaModel inertia = InertiaModel::exact;
   bool repair = false;             ///< repair_mesh() the surface first (holes, winding, duplicates)
   bool largest_component = false;  ///< keep only the largest connected component (implies repair)
+  /// The centre of mass, in the file's coordinates (multiplied by `scale` like them), when it is known and
+  /// is not the uniform model's (a weighted, hollow or non-uniform part): the inertia is then the model's
+  /// distribution about this point (with_center_of_mass). It must lie inside the convex hull.
+  std::optional<Vec3> center_of_mass;
   bool operator==(const MeshOptions&) const = default;
 };
 

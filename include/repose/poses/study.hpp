@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,10 +23,11 @@ struct PosesStudy {
   std::string source;       ///< mesh file or shape spec
   std::string fingerprint;  ///< geometry_fingerprint of the particle (hex); empty in files that predate it
   double density = 0;
-  std::string inertia = "exact";  ///< the particle's inertia model (MeshOptions)
-  double scale = 1;               ///< the factor its file's coordinates were multiplied by
-  bool repaired = false;          ///< its surface was repaired (MeshOptions::repair)
-  double length = 0;              ///< characteristic length L (length)
+  std::string inertia = "exact";       ///< the particle's inertia model (MeshOptions)
+  double scale = 1;                    ///< the factor its file's coordinates were multiplied by
+  bool repaired = false;               ///< its surface was repaired (MeshOptions::repair)
+  std::optional<Vec3> center_of_mass;  ///< the centre of mass given for it (MeshOptions), if any
+  double length = 0;                   ///< characteristic length L (length)
   double mass = 0;
   int hull_faces = 0;
   bool smooth = false;  ///< treated as smooth (the settling engine's smooth model)
