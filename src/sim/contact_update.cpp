@@ -150,6 +150,7 @@ void Settler::Impl::choose_support(const sim::LineFit& fit, const Vec2& g, const
                                    const Vec3& com_velocity) {
   sim::Support next;
   int next_vertex = support_vertex;
+  bool stop = false;  // a plastic impact at several points left no motion (impact_support.hpp)
   auto point_at = [&](int k) {
     next = {world_vertex(k), particle.hull.vertices[k], false, Vec3::UnitX()};
     next_vertex = k;
@@ -167,6 +168,7 @@ void Settler::Impl::choose_support(const sim::LineFit& fit, const Vec2& g, const
   auto take = [&](const sim::SupportChoice& c) {
     next = c.support;
     next_vertex = c.vertex;
+    stop = c.stop;
   };
 
   if (smooth) {
@@ -188,8 +190,12 @@ void Settler::Impl::choose_support(const sim::LineFit& fit, const Vec2& g, const
     const bool line = type != ContactType::point && !keep_point;
     if (keep_line)
       axis = support.axis;
-    else if (type == ContactType::surface && has_prev_axis)
-      axis = prev_axis;
+    else if (type == ContactType::surface && has_prev_axis && std::hypot(prev_axis.x(), prev_axis.y()) > 1e-6)
+      // The hinge lies in the wall, as the fitted line does (a tilted one would hold the particle above
+      // it): the previous axis's direction on the wall. A turn about the vertical (a tossed, spinning
+      // particle) gives none, and the fitted line serves; about a near-vertical hinge through one touching
+      // point a spinning die hung, its damped spin dying out, until the time limit.
+      axis = Vec3(prev_axis.x(), prev_axis.y(), 0);
     if (line && line_support(o, axis).holds) {
       line_at(o, axis);
     } else {
@@ -201,11 +207,12 @@ void Settler::Impl::choose_support(const sim::LineFit& fit, const Vec2& g, const
 
   const bool same = next_vertex == support_vertex && next.line == support.line &&
                     (!next.line || std::abs(next.axis.dot(support.axis)) > 1 - 1e-14);
-  if (same) {
+  if (same && !stop) {
     remember_axis(omega);
     return;
   }
-  const Vec3 momentum = sim::momentum_after_switch(body, q, com, omega, com_velocity, next);
+  const Vec3 momentum =
+      stop ? Vec3::Zero() : sim::momentum_after_switch(body, q, com, omega, com_velocity, next);
   // A new support that has sunk by round-off (≤ 1e-12·L) is lifted exactly onto the wall; one that touches
   // from above (within 1e-9·L) stays where it is, so the switch never lowers the particle.
   next.world.z() = std::max(next.world.z(), 0.0);

@@ -88,7 +88,21 @@ SupportChoice choose_from_touching(const Impact& impact, const std::vector<Touch
     const SupportChoice c = make(f);
     if (others_separate(impact, touching, c.support)) return c;
   }
-  return make(nearest.j >= 0 || n < 2 ? nearest : ClosestFeature{nearest.i, (nearest.i + 1) % n});
+  // Every support the motion could go on about drives a touching point into the wall: the approaching
+  // points are struck together, plastically (the paper's touch, E = 0), and the motion stops. Keeping it
+  // instead (the nearest edge with its momentum) drove the third point into the wall at once, step after
+  // step, without end (a tossed kitten d3 die, docs/experiments.md).
+  Impact still = impact;
+  still.omega = Vec3::Zero();
+  still.com_velocity = Vec3::Zero();
+  SupportChoice c = make(nearest.j >= 0 || n < 2 ? nearest : ClosestFeature{nearest.i, (nearest.i + 1) % n});
+  for (const ClosestFeature& f : candidates)
+    if (others_separate(still, touching, make(f).support)) {
+      c = make(f);
+      break;
+    }
+  c.stop = true;
+  return c;
 }
 
 SupportChoice choose_smooth(const Impact& impact, const std::vector<Touch>& touching, const Touch& current,

@@ -35,6 +35,11 @@ struct Impact {
 struct SupportChoice {
   Support support;
   int vertex = -1;
+  /// The impact leaves no motion: every support the motion could go on about would drive another touching
+  /// point into the wall, so the approaching points are struck together, plastically, which stops a body
+  /// with three or more points on the wall (no normal velocity at three points leaves none); the support
+  /// then starts from rest.
+  bool stop = false;
 };
 
 /// The support at hull vertex `t` (a point), or the horizontal line through it along `axis` (its z is
@@ -49,8 +54,9 @@ bool others_separate(const Impact& impact, const std::vector<Touch>& touching, c
 
 /// Several points on the wall, centre of mass's projection `g`: the feature of their polygon nearest `g`,
 /// unless that would drive another touching point into the wall; then the first feature (edges in polygon
-/// order, then corners) that lets every other point separate; failing that, the nearest edge, which keeps
-/// both its ends on the wall.
+/// order, then corners) that lets every other point separate. Failing that, the motion stops (`stop`) and
+/// the same search is made from rest, where gravity alone decides; failing that too (the centre of mass over
+/// the polygon), the nearest edge from rest, which keeps both its ends on the wall.
 SupportChoice choose_from_touching(const Impact& impact, const std::vector<Touch>& touching, const Vec2& g);
 
 /// A smooth particle turns about its single lowest point: the lowest touching point other than the current
