@@ -37,10 +37,16 @@ def load_case(out, name):
     return d, summary, ts
 
 
+FIGURES = []  # (PNG path, title) of every figure, in the order made: report.json lists them for report.html
+
+
 def save(fig, d, stem):
     fig.tight_layout()
     for ext in ("png", "svg"):
         fig.savefig(os.path.join(d, f"{stem}.{ext}"), dpi=120)
+    titles = [ax.get_title() for ax in fig.axes if ax.get_title()]
+    case = os.path.basename(os.path.normpath(d))
+    FIGURES.append((os.path.join(d, f"{stem}.png"), f"{case}: {titles[0] if titles else stem}"))
     plt.close(fig)
 
 
@@ -282,10 +288,15 @@ def main(out):
         plot_omega(d, "irregular", ts, transitions=True)
         rows.append(("irregular", "support points at rest", "several", "—", len(s["rest"]["contact_points"])))
 
+    table = [[case, q, fmt(paper), fmt(exact, 7), fmt(ours, 7)] for case, q, paper, exact, ours in rows]
     with open(os.path.join(out, "report.md"), "w") as f:
         f.write("| case | quantity | paper | exact or analytic | repose |\n|---|---|---|---|---|\n")
-        for case, q, paper, exact, ours in rows:
-            f.write(f"| {case} | {q} | {fmt(paper)} | {fmt(exact, 7)} | {fmt(ours, 7)} |\n")
+        for row in table:
+            f.write("| " + " | ".join(row) + " |\n")
+    # The same table and the figures' files for report.html (written by repose paper), paths relative to OUT_DIR.
+    figures = [{"file": os.path.relpath(path, out), "title": title} for path, title in FIGURES]
+    with open(os.path.join(out, "report.json"), "w") as f:
+        json.dump({"table": table, "figures": figures}, f, indent=1)
     print(f"figures and report.md written to {out}")
 
 

@@ -1,8 +1,10 @@
 // repose paper [--out DIR]: reproduces the four cases of section 3 of the paper (six runs), with time series,
 // summaries, ParaView series, figures and a comparison table.
 #include <cstdlib>
+#include <deque>
 #include <filesystem>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -13,6 +15,7 @@
 #include "repose/model/particle.hpp"
 #include "repose/model/scenario.hpp"
 #include "repose/output/files.hpp"
+#include "repose/output/html.hpp"
 #include "repose/output/report.hpp"
 #include "repose/output/vtk.hpp"
 #include "repose/sim/settle.hpp"
@@ -27,13 +30,14 @@ struct PaperOptions {
   bool plots = true;
 };
 
-// One case: the run, its CSV and JSON, and `frames` ParaView frames evenly spread over the run.
-void run_case(const PaperCase& c, const PaperOptions& o) {
+// One case: the run, its CSV and JSON, and `frames` ParaView frames evenly spread over the run. Returns the
+// run for the HTML report (its particle kept in `particles`).
+SettleRecording run_case(const PaperCase& c, const PaperOptions& o, std::deque<Particle>& particles) {
   const Scenario s =
       parse_scenario(std::string(c.scenario_json), "scenarios/paper/" + std::string(c.name) + ".json");
   const std::string dir = o.out + "/" + std::string(c.name);
   ensure_output_directory(dir);
-  const Particle particle = load_particle(s.particle, s.density);
+  const Particle& particle = particles.emplace_back(load_particle(s.particle, s.density));
   std::vector<Sample> samples;
   const SettleResult r = settle(
       particle, s.params, s.orientation, [&](const Sample& x) { samples.push_back(x); },
@@ -52,6 +56,32 @@ void run_case(const PaperCase& c, const PaperOptions& o) {
   std::cout << "  " << c.name << ": " << to_string(r.status) << " after " << num(r.time) << " s, "
             << to_string(r.rest) << " (COM height " << num(r.com.z()) << " cm), " << r.steps << " steps, "
             << vtk.frames() << " frames\n";
+  return {.title = std::string(c.name),
+          .particle = &particle,
+          .params = s.params,
+          .initial = s.orientation,
+          .result = r,
+          .samples = std::move(samples)};
+}
+
+// The comparison table and the figures that plot_paper.py listed in OUT/report.json.
+void read_comparison(const std::string& out, std::vector<PaperTableRow>& table,
+                     std::vector<PaperFigure>& figures) {
+  const std::string path = out + "/report.json";
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(read_text_file(path));
+    for (const auto& row : j.at("table")) {
+      const auto text = row.get<std::vector<std::string>>();
+      if (text.size() != 5) throw Error("a table row needs 5 entries");
+      table.push_back({text[0], text[1], text[2], text[3], text[4]});
+    }
+    for (const auto& f : j.at("figures"))
+      figures.push_back({f.at("title").get<std::string>(),
+                         read_text_file(out + "/" + f.at("file").get<std::string>(), std::size_t{1} << 26)});
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(path + ": " + e.what());
+  }
 }
 
 void make_figures(const PaperOptions& o) {
@@ -82,10 +112,19 @@ Command add_paper_command(CLI::App& app) {
               throw Error("--out: a directory name with ' is not supported");
             ensure_output_directory(o->out);
             std::cout << "repose paper: " << kPaperCases.size() << " runs into " << o->out << "\n";
-            for (const PaperCase& c : kPaperCases) run_case(c, *o);
-            if (o->plots) make_figures(*o);
-            std::cout << "comparison table: " << o->out << "/report.md; ParaView: open " << o->out
-                      << "/<case>/vtk/settling.pvd\n";
+            std::deque<Particle> particles;
+            std::vector<SettleRecording> runs;
+            for (const PaperCase& c : kPaperCases) runs.push_back(run_case(c, *o, particles));
+            std::vector<PaperTableRow> table;
+            std::vector<PaperFigure> figures;
+            if (o->plots) {
+              make_figures(*o);
+              read_comparison(o->out, table, figures);
+            }
+            write_file_atomically(o->out + "/report.html", paper_report_html(runs, table, figures));
+            std::cout << "report: " << o->out
+                      << "/report.html (open it in a browser); comparison table: " << o->out
+                      << "/report.md; ParaView: open " << o->out << "/<case>/vtk/settling.pvd\n";
             return 0;
           }};
 }

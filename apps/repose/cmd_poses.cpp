@@ -23,6 +23,7 @@
 #endif
 #include "repose/model/particle.hpp"
 #include "repose/output/files.hpp"
+#include "repose/output/html.hpp"
 #include "repose/poses/ensemble.hpp"
 #include "repose/poses/landscape.hpp"
 #include "repose/poses/rest_poses.hpp"
@@ -50,6 +51,7 @@ struct PosesOptions {
   bool full_settle = false;
   bool no_progress = false;
   std::string out_dir;
+  std::string html;
   bool json = false;
 };
 
@@ -177,6 +179,10 @@ int run_job(const PosesOptions& o, const CLI::App& sub, WorkRunner& runner) {
     particles =
         resolve_particles(o.inputs, o.manifest, o.mesh.resolve(o.physics.unit_system() == UnitSystem::cgs),
                           o.physics.unit_system() == UnitSystem::cgs);
+    if (!o.html.empty() && particles.size() > 1)
+      throw Error("poses: --html writes the report of one particle, and this job has " +
+                  std::to_string(particles.size()) + " (run repose poses on one of them with --html)");
+    if (!o.html.empty()) ensure_output_file(o.html);
     if (particles.size() > 1 && o.out_dir.empty())
       throw Error("poses: " + std::to_string(particles.size()) +
                   " particles need --out DIR (one result file per particle and a summary)");
@@ -216,6 +222,10 @@ int run_job(const PosesOptions& o, const CLI::App& sub, WorkRunner& runner) {
   if (!runner.is_root()) return 0;
 
   if (studies.size() == 1) {
+    if (!o.html.empty())
+      write_file_atomically(
+          o.html, poses_report_html(load_particle(particles[0].source, studies[0].density, particles[0].mesh),
+                                    studies[0]));
     print_result(studies[0], o.json);
     return 0;
   }
@@ -297,6 +307,9 @@ Command add_poses_command(CLI::App& app) {
       "Write poses.json and poses.csv (several particles: NAME.poses.json/.csv and summary.csv/.md/"
       ".json) into this directory, with a checkpoint in DIR/.repose-checkpoint: rerunning the same "
       "command after an interruption resumes");
+  sub->add_option("--html", o->html,
+                  "Write a self-contained HTML report: every rest pose drawn at rest, with its probability "
+                  "(one particle; docs/reports.md)");
   sub->add_flag("--json", o->json, "Print the JSON result instead of the table");
   return {sub, [o, sub]() { return run_poses(*o, *sub); }};
 }

@@ -12,6 +12,7 @@
 #include "repose/model/particle.hpp"
 #include "repose/model/scenario.hpp"
 #include "repose/output/files.hpp"
+#include "repose/output/html.hpp"
 #include "repose/output/report.hpp"
 #include "repose/output/vtk.hpp"
 #include "repose/sim/settle.hpp"
@@ -28,6 +29,7 @@ struct SettleOptions {
   std::string scenario;
   std::string out_dir;
   std::string vtk_dir;
+  std::string html;
   double frame_dt = 0;
   double sample_dt = 0;
   int frames = 0;
@@ -150,6 +152,9 @@ Command add_settle_command(CLI::App& app) {
   sub->add_option("--out", o->out_dir, "Write timeseries.csv and summary.json into this directory");
   sub->add_option("--vtk", o->vtk_dir, "Write ParaView frames (.vtp) and settling.pvd into this directory");
   sub->add_option(
+      "--html", o->html,
+      "Write a self-contained HTML report: the run played in 3-D, with its plots (docs/reports.md)");
+  sub->add_option(
          "--sample-dt", o->sample_dt,
          "Time between the samples of timeseries.csv and the ParaView frames' candidates (0 or unset: "
          "every step with --integrator paper, 1e-3*sqrt(L/g) with adaptive)")
@@ -163,10 +168,11 @@ Command add_settle_command(CLI::App& app) {
             const RunSetup setup = resolve_setup(*o, *sub);
             if (!o->out_dir.empty()) ensure_output_directory(o->out_dir);
             if (!o->vtk_dir.empty()) ensure_output_directory(o->vtk_dir);
+            if (!o->html.empty()) ensure_output_file(o->html);
             const Particle particle = load_particle(setup.source, setup.density, setup.mesh);
 
             // Samples are kept when frames must be spread over a run whose length is known only at its end.
-            const bool keep_samples = !o->out_dir.empty() || !o->vtk_dir.empty();
+            const bool keep_samples = !o->out_dir.empty() || !o->vtk_dir.empty() || !o->html.empty();
             std::vector<Sample> samples;
             // Without outputs no sample is kept, and the adaptive run is the same whatever the interval.
             const double sample_dt = !keep_samples      ? 0.0
@@ -188,6 +194,13 @@ Command add_settle_command(CLI::App& app) {
               vtk.finish(r);
             }
             const std::string summary = settle_summary_json(particle, setup.params, setup.orientation, r);
+            if (!o->html.empty())
+              write_file_atomically(o->html, settle_report_html({.title = particle.name,
+                                                                 .particle = &particle,
+                                                                 .params = setup.params,
+                                                                 .initial = setup.orientation,
+                                                                 .result = r,
+                                                                 .samples = std::move(samples)}));
             if (!o->out_dir.empty()) {
               write_file_atomically(o->out_dir + "/timeseries.csv", csv);
               write_file_atomically(o->out_dir + "/summary.json", summary);

@@ -89,4 +89,16 @@ void ensure_output_directory(const std::string& dir) {
   if (::access(dir.c_str(), W_OK) != 0) throw Error(dir + ": output directory is not writable");
 }
 
+void ensure_output_file(const std::string& path) {
+  namespace fs = std::filesystem;
+  const fs::path parent = fs::path(path).parent_path();
+  try {
+    ensure_output_directory(parent.empty() ? "." : parent.string());
+  } catch (const Error& e) {
+    throw Error(path + ": cannot be written: " + e.what());
+  }
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw Error(path + ": is a directory, not a file name");
+}
+
 }  // namespace repose

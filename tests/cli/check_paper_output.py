@@ -70,6 +70,25 @@ for case in CASES:
 check_png(os.path.join(out, "cylinders_omega.png"))
 if not os.path.isfile(os.path.join(out, "report.md")):
     problems.append("missing report.md")
+# report.html: one page carrying the six runs, the table of report.md (same rows) and every figure listed.
+html_path = os.path.join(out, "report.html")
+if not os.path.isfile(html_path):
+    problems.append("missing report.html")
+else:
+    page = open(html_path, encoding="utf-8").read()
+    start = page.find('<script id="repose-data" type="application/json">')
+    data = json.loads(page[page.index(">", start) + 1:page.index("</script>", start)])
+    md_rows = [line for line in open(os.path.join(out, "report.md")) if line.startswith("| ")][1:]
+    listed = json.load(open(os.path.join(out, "report.json")))
+    if len(data["cases"]) != 6:
+        problems.append(f"report.html: {len(data['cases'])} runs, expected 6")
+    if len(data["table"]) != len(md_rows) or ["| " + " | ".join(r) + " |\n" for r in data["table"]] != md_rows:
+        problems.append("report.html: its table is not report.md's")
+    if len(data["figures"]) != len(listed["figures"]) or len(data["figures"]) < 10:
+        problems.append(f"report.html: {len(data['figures'])} figures, report.json lists {len(listed['figures'])}")
+    for f in data["figures"]:
+        if not f["src"].startswith("data:image/png;base64,iVBORw0KGgo"):
+            problems.append(f"report.html: figure {f['title']} is not an embedded PNG")
 for p in problems:
     print(p)
 sys.exit(1 if problems else 0)

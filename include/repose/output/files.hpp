@@ -25,4 +25,8 @@ std::string read_text_file(const std::string& path, std::size_t max_bytes = std:
 /// Creates `dir` (and parents) if needed and checks it is a writable directory. Throws repose::Error.
 void ensure_output_directory(const std::string& dir);
 
+/// Before a run that ends by writing the file `path`: creates its directory if needed and checks that it is
+/// writable and that `path` is not a directory. Throws repose::Error.
+void ensure_output_file(const std::string& path);
+
 }  // namespace repose

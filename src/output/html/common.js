@@ -1,0 +1,103 @@
+// The parts every report shares: its data, three.js (embedded in the page as text and imported from a blob,
+// so the page needs no file and no network), DOM helpers, number formats and uPlot charts. The page's
+// scripts are concatenated in the order common, stage, settle, poses, paper into one module (html_page.cpp).
+
+const DATA = JSON.parse(document.getElementById("repose-data").textContent);
+
+async function loadThree() {
+  const source = document.getElementById("three-source").textContent;
+  const url = URL.createObjectURL(new Blob([source], { type: "text/javascript" }));
+  try {
+    return await import(url);
+  } finally {
+    URL.revokeObjectURL(url);
+  }
+}
+
+// el("div", {class: "x"}, child, "text", ...): an element with attributes and children.
+function el(tag, attributes = {}, ...children) {
+  const node = document.createElement(tag);
+  for (const [key, value] of Object.entries(attributes)) {
+    if (key.startsWith("on")) node.addEventListener(key.slice(2), value);
+    else node.setAttribute(key, value);
+  }
+  for (const child of children) {
+    if (child === null || child === undefined) continue;
+    node.append(child instanceof Node ? child : String(child));
+  }
+  return node;
+}
+
+// A number for people: `digits` significant digits, no exponent for everyday magnitudes.
+function fmt(x, digits = 4) {
+  if (x === null || x === undefined) return "—";
+  if (typeof x !== "number") return String(x);
+  if (x === 0) return "0";
+  const a = Math.abs(x);
+  if (a >= 1e-3 && a < 1e6) return String(Number(x.toPrecision(digits)));
+  return x.toExponential(digits - 1);
+}
+
+function percent(p, digits = 3) {
+  return fmt(100 * p, digits) + " %";
+}
+
+// A two-column table of [label, value] rows.
+function keyValueTable(rows) {
+  return el("table", { class: "kv" }, ...rows.map(([k, v]) => el("tr", {}, el("th", {}, k), el("td", {}, v))));
+}
+
+const CONTACT_COLOURS = ["#9e9e9e", "#d62728", "#ff7f0e", "#2ca02c", "#1f77b4"];
+
+// A uPlot line chart of `series` [{label, values, colour}] against `x`, with a vertical line at the time
+// cursor.time (set by the player; redraw to move it). `steps`: draw as a staircase (the contact type).
+function lineChart(parent, { title, xLabel, yLabel, x, series, steps = false, yValues = null, cursor = null }) {
+  const width = Math.min(760, Math.max(320, parent.clientWidth || 760));
+  const options = {
+    title,
+    width,
+    height: 220,
+    scales: { x: { time: false } },
+    axes: [
+      { label: xLabel },
+      yValues ? { label: yLabel, values: (u, ticks) => ticks.map(yValues), splits: () => yValues.splits } : { label: yLabel },
+    ],
+    series: [
+      { label: xLabel },
+      ...series.map((s) => ({
+        label: s.label,
+        stroke: s.colour,
+        width: 1.5,
+        paths: steps ? uPlot.paths.stepped({ align: 1 }) : undefined,
+        points: { show: false },
+      })),
+    ],
+    hooks: {
+      draw: [
+        (u) => {
+          if (!cursor || cursor.time === null) return;
+          const left = u.valToPos(cursor.time, "x", true);
+          const ctx = u.ctx;
+          ctx.save();
+          ctx.strokeStyle = "#444";
+          ctx.setLineDash([4, 3]);
+          ctx.beginPath();
+          ctx.moveTo(left, u.bbox.top);
+          ctx.lineTo(left, u.bbox.top + u.bbox.height);
+          ctx.stroke();
+          ctx.restore();
+        },
+      ],
+    },
+  };
+  return new uPlot(options, [x, ...series.map((s) => s.values)], parent);
+}
+
+// A status line for errors of the page itself (the test reads the console; a person reads this).
+function reportProblem(error) {
+  console.error(error);
+  document.getElementById("app").prepend(el("p", { class: "problem" }, "This report could not be drawn: " + error));
+}
+
+// The report builders by DATA.kind ("settle", "poses", "paper"), each (THREE, app element) → draws the page.
+const REPORTS = {};
