@@ -9,6 +9,7 @@ Run with: PYTHONPATH=<build>/python REPOSE_CLI=<build>/apps/repose/repose python
 import json
 import os
 import pathlib
+import signal
 import subprocess
 import threading
 import time
@@ -174,14 +175,21 @@ def test_bad_input_is_a_value_error_with_one_line(call, message):
 
 
 def test_ctrl_c_stops_a_long_study():
-    p = repose.Particle.shape("irregular:seed=3")
-    timer = threading.Timer(0.3, _thread.interrupt_main)
-    start = time.monotonic()
-    timer.start()
-    with pytest.raises(KeyboardInterrupt):
-        repose.poses(p, n=10_000_000, threads=2)
-    timer.cancel()
-    assert time.monotonic() - start < 10  # the whole study would take minutes
+    # Python turns SIGINT into KeyboardInterrupt only if SIGINT was not ignored when it started, and a job run
+    # in the background of a shell starts with it ignored (then interrupt_main does nothing and the study
+    # below would run for an hour): install Python's handler for the test, as an interactive session has it.
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        p = repose.Particle.shape("irregular:seed=3")
+        timer = threading.Timer(0.3, _thread.interrupt_main)
+        start = time.monotonic()
+        timer.start()
+        with pytest.raises(KeyboardInterrupt):
+            repose.poses(p, n=10_000_000, threads=2)
+        timer.cancel()
+        assert time.monotonic() - start < 10  # the whole study would take minutes
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
 
 def test_the_gil_is_released_during_a_run():
