@@ -111,55 +111,76 @@ void Settler::Impl::spin_step() {
 // before s1; an interval those two cover is clear, any other is halved, earliest first.
 double Settler::Impl::locate_touch(double a, double b) {
   const auto& verts = particle.hull.vertices;
-  const double i_min =
-      Eigen::SelfAdjointEigenSolver<Mat3>(body.inertia, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
+  if (flight_inertia_min == 0)
+    flight_inertia_min =
+        Eigen::SelfAdjointEigenSolver<Mat3>(body.inertia, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
+  const double i_min = flight_inertia_min;
   const Mat3 R0 = q.toRotationMatrix();
   const double spin_momentum = (R0 * body.inertia * R0.transpose() * flight_omega).norm();
   const double accel = params.gravity + 2 * hull_radius * spin_momentum * spin_momentum / (i_min * i_min);
-  struct Sample {
-    double t;
-    std::vector<double> z, v;  // heights and vertical speeds of the vertices
-  };
-  auto sample_at = [&](double s) {
+  // The heights and vertical speeds of the vertices at an instant: recomputed from the instant when needed,
+  // not kept with the intervals still to examine (a wide search keeps thousands of intervals: with their
+  // samples, gigabytes for a 10,000-vertex hull). The last few are cached, since the earliest-first order
+  // examines an interval right after its parent, whose ends it shares.
+  const std::size_t n = verts.size();
+  touch_samples.resize(kTouchCached * 2 * n);
+  touch_sample_time.fill(NAN);  // a sample describes this flight step only
+  touch_sample_use.fill(0);
+  std::uint64_t clock = 0;
+  // Slot of the sample at instant s (z at [0, n), z' at [n, 2n) of the slot's span).
+  const auto sample = [&](double s) -> const double* {
+    std::size_t slot = 0;
+    for (std::size_t i = 0; i < kTouchCached; ++i) {
+      if (touch_sample_time[i] == s) {
+        touch_sample_use[i] = ++clock;
+        return &touch_samples[i * 2 * n];
+      }
+      if (touch_sample_use[i] < touch_sample_use[slot]) slot = i;
+    }
+    double* out = &touch_samples[slot * 2 * n];
     const sim::Rotation st = flight_rotation->state_at(s);
     const double tau = s - fall_t0;
     const double zc = fall_origin.z() + fall_velocity.z() * tau - 0.5 * params.gravity * tau * tau;
     const double vc = fall_velocity.z() - params.gravity * tau;
-    Sample out{s, std::vector<double>(verts.size()), std::vector<double>(verts.size())};
-    for (std::size_t k = 0; k < verts.size(); ++k) {
+    for (std::size_t k = 0; k < n; ++k) {
       const Vec3 r = st.q * verts[k];
-      out.z[k] = zc + r.z();
-      out.v[k] = vc + st.omega.cross(r).z();
+      out[k] = zc + r.z();
+      out[n + k] = vc + st.omega.cross(r).z();
     }
+    touch_sample_time[slot] = s;
+    touch_sample_use[slot] = ++clock;
     return out;
   };
-  auto below = [](const Sample& s) { return *std::min_element(s.z.begin(), s.z.end()) < 0; };
-  auto clear = [&](const Sample& l, const Sample& r) {
-    for (std::size_t k = 0; k < l.z.size(); ++k) {
-      const double zl = std::max(l.z[k], 0.0), zr = std::max(r.z[k], 0.0);
-      const double after = (l.v[k] + std::sqrt(l.v[k] * l.v[k] + 2 * accel * zl)) / accel;
-      const double before = (-r.v[k] + std::sqrt(r.v[k] * r.v[k] + 2 * accel * zr)) / accel;
-      if (after + before < r.t - l.t) return false;
+  const auto below = [&](const double* z) { return *std::min_element(z, z + n) < 0; };
+  const auto clear = [&](double tl, const double* l, double tr, const double* r) {
+    for (std::size_t k = 0; k < n; ++k) {
+      const double zl = std::max(l[k], 0.0), zr = std::max(r[k], 0.0);
+      const double vl = l[n + k], vr = r[n + k];
+      const double after = (vl + std::sqrt(vl * vl + 2 * accel * zl)) / accel;
+      const double before = (-vr + std::sqrt(vr * vr + 2 * accel * zr)) / accel;
+      if (after + before < tr - tl) return false;
     }
     return true;
   };
   const double resolution = (b - a) * std::ldexp(1.0, -kTouchBisections);
   // Intervals still to examine, latest first on the stack so the earliest is examined first.
-  std::vector<std::pair<Sample, Sample>> stack;
-  stack.emplace_back(sample_at(a), sample_at(b));
-  for (int examined = 0; !stack.empty() && examined < kTouchIntervals; ++examined) {
-    auto [l, r] = std::move(stack.back());
-    stack.pop_back();
+  touch_stack.clear();
+  touch_stack.emplace_back(a, b);
+  for (int examined = 0; !touch_stack.empty() && examined < kTouchIntervals; ++examined) {
+    const auto [tl, tr] = touch_stack.back();
+    touch_stack.pop_back();
+    const double* l = sample(tl);
+    const double* r = sample(tr);
     if (below(r)) {
-      if (r.t - l.t <= resolution) return l.t;  // bracketed: l on or above the wall, r below it
-    } else if (r.t - l.t <= resolution || clear(l, r)) {
+      if (tr - tl <= resolution) return tl;  // bracketed: l on or above the wall, r below it
+    } else if (tr - tl <= resolution || clear(tl, l, tr, r)) {
       continue;  // clear (an interval this short with both ends above the wall: a tangency within round-off)
     }
-    Sample m = sample_at(0.5 * (l.t + r.t));
-    stack.emplace_back(m, std::move(r));
-    stack.emplace_back(std::move(l), std::move(m));
+    const double tm = 0.5 * (tl + tr);
+    touch_stack.emplace_back(tm, tr);
+    touch_stack.emplace_back(tl, tm);
   }
-  return stack.empty() ? INFINITY : stack.back().first.t;
+  return touch_stack.empty() ? INFINITY : touch_stack.back().first;
 }
 
 }  // namespace repose

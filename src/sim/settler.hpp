@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <optional>
 #include <span>
@@ -94,7 +95,15 @@ struct Settler::Impl {
   Vec3 flight_omega = Vec3::Zero();
   double flight_step_end = -INFINITY;  // the end of the current integrator step
   double flight_touch = INFINITY;      // the touch located in it, if any
-  bool rigid_impacts = false;          // uses_impacts(params): touches while airborne are impacts
+  double flight_inertia_min = 0;  // the body's smallest principal moment (locate_touch's bound; 0: unset)
+  // locate_touch's working memory, kept from search to search (a fresh allocation per sample made the heap
+  // grow and shrink by megabytes a drop): the intervals to examine and a few cached samples.
+  static constexpr std::size_t kTouchCached = 4;
+  std::vector<std::pair<double, double>> touch_stack;
+  std::vector<double> touch_samples;  // kTouchCached slots of 2·N: heights, then vertical speeds
+  std::array<double, kTouchCached> touch_sample_time{};
+  std::array<std::uint64_t, kTouchCached> touch_sample_use{};
+  bool rigid_impacts = false;  // uses_impacts(params): touches while airborne are impacts
   sim::ImpactLaw impact_law;
   std::vector<ImpactRecord> impacts;
   int bounces = 0;
