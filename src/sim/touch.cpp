@@ -62,13 +62,12 @@ void Settler::Impl::touch(const Vec3& velocity, const Vec3& omega) {
     record.energy_after = sim::kinetic_energy(body.mass, inertia, m) + potential;
     impacts.push_back(record);
   }
-  // A rebound: every point on the wall leaves it fast enough to rise clear of the contact band in free
-  // flight (u² > 2·g·ε); otherwise it would stay within ε, where the paper's contact model already counts it
-  // as touching, and the paper's rotation takes over (docs/method.md, "Rebound or hand-over").
+  // A rebound: every point on the wall leaves it fast enough to rise above the touching tolerance
+  // (u² > 2·g·1e-9·L); otherwise the particle stays on the wall and the paper's rotation takes over.
   double slowest = INFINITY;
   for (const Vec3& arm : arms) slowest = std::min(slowest, normal_speed(arm));
   const bool rebound =
-      impacts.size() < kMaxImpacts && slowest * std::abs(slowest) > 2 * params.gravity * band;
+      impacts.size() < kMaxImpacts && slowest * std::abs(slowest) > 2 * params.gravity * touch_tol;
   if (!impacts.empty() && impacts.back().t == t) impacts.back().rebound = rebound;
   if (rebound) {
     ++bounces;
