@@ -167,6 +167,12 @@ TEST(Rebound, AFreeBodyKeepsItsAngularMomentumAndEnergyInFlight) {
     EXPECT_NEAR(0.5 * s.omega.dot(momentum(s)), k0, 1e-7 * k0) << "t " << s.t;
     const Vec3 c = c0 + p.velocity * s.t - Vec3(0, 0, 0.5 * kG * s.t * s.t);
     EXPECT_NEAR((s.com - c).norm(), 0, 1e-12 * c0.z()) << "t " << s.t;
+    // The sample's kinetic energy: ½·m·|v|² of the centre of mass on its parabola (horizontal part too) plus
+    // the rotation's ½·ω·L, and with m·g·z the total the flight conserves (to the rotation's 1e-7).
+    const Vec3 v = p.velocity - Vec3(0, 0, kG * s.t);
+    const double kinetic = 0.5 * box.mass.mass * v.squaredNorm() + 0.5 * s.omega.dot(momentum(s));
+    EXPECT_NEAR(s.kinetic_energy, kinetic, 1e-7 * kinetic) << "t " << s.t;
+    EXPECT_NEAR(s.potential_energy, box.mass.mass * kG * s.com.z(), 1e-12 * box.mass.mass * kG * c0.z());
   }
   EXPECT_EQ(r.status, Status::rest);
   EXPECT_LE(r.max_penetration, 1e-9 * box.length);
