@@ -124,7 +124,7 @@ def p_value(counts, probs):
 
 
 # The grid of the fit: restitution E (Stronge's energetic coefficient) and friction mu (inf: no slip).
-FIT_E = [0.1, 0.3, 0.5, 0.7, 0.9]
+FIT_E = [0.1, 0.3, 0.5, 0.7, 0.9, 0.95]
 FIT_MU = [0.1, 0.3, 0.6, 1.0, math.inf]
 
 
