@@ -125,18 +125,14 @@ double Settler::Impl::locate_touch(double a, double b) {
   const std::size_t n = verts.size();
   touch_samples.resize(kTouchCached * 2 * n);
   touch_sample_time.fill(NAN);  // a sample describes this flight step only
-  touch_sample_use.fill(0);
-  std::uint64_t clock = 0;
-  // Slot of the sample at instant s (z at [0, n), z' at [n, 2n) of the slot's span).
+  // Slots are written in turn, so the two ends an iteration reads and the midpoint it then computes never
+  // share one.
+  std::size_t cursor = 0;
+  // The sample at instant s: heights at [0, n), vertical speeds at [n, 2n).
   const auto sample = [&](double s) -> const double* {
-    std::size_t slot = 0;
-    for (std::size_t i = 0; i < kTouchCached; ++i) {
-      if (touch_sample_time[i] == s) {
-        touch_sample_use[i] = ++clock;
-        return &touch_samples[i * 2 * n];
-      }
-      if (touch_sample_use[i] < touch_sample_use[slot]) slot = i;
-    }
+    for (std::size_t i = 0; i < kTouchCached; ++i)
+      if (touch_sample_time[i] == s) return &touch_samples[i * 2 * n];
+    const std::size_t slot = cursor++ % kTouchCached;
     double* out = &touch_samples[slot * 2 * n];
     const sim::Rotation st = flight_rotation->state_at(s);
     const double tau = s - fall_t0;
@@ -148,7 +144,6 @@ double Settler::Impl::locate_touch(double a, double b) {
       out[n + k] = vc + st.omega.cross(r).z();
     }
     touch_sample_time[slot] = s;
-    touch_sample_use[slot] = ++clock;
     return out;
   };
   const auto below = [&](const double* z) { return *std::min_element(z, z + n) < 0; };

@@ -102,7 +102,6 @@ struct Settler::Impl {
   std::vector<std::pair<double, double>> touch_stack;
   std::vector<double> touch_samples;  // kTouchCached slots of 2·N: heights, then vertical speeds
   std::array<double, kTouchCached> touch_sample_time{};
-  std::array<std::uint64_t, kTouchCached> touch_sample_use{};
   bool rigid_impacts = false;  // uses_impacts(params): touches while airborne are impacts
   sim::ImpactLaw impact_law;
   std::vector<ImpactRecord> impacts;
