@@ -59,15 +59,22 @@ def tree_files(commit):
 
 def sync_tree(tree, commit):
     """Makes `tree` hold the source files (see tree_files), writing only those that differ so that the
-    incremental build stays incremental."""
-    for rel, data in tree_files(commit).items():
+    incremental build stays incremental. When the tree moves to another commit every file is touched, so the
+    next build is a whole one: an incremental build across commits once kept a stale object (session 14)."""
+    files = tree_files(commit)
+    stamp = tree.parent / "tree.commit"
+    moved = not stamp.exists() or stamp.read_text() != str(commit)
+    for rel, data in files.items():
         dst = tree / rel
         if dst.is_file() and dst.read_bytes() == data:
+            if moved:
+                os.utime(dst)
             continue
         dst.parent.mkdir(parents=True, exist_ok=True)
         dst.write_bytes(data)
         if rel.endswith((".sh", ".py")):
             dst.chmod(0o755)
+    stamp.write_text(str(commit))
 
 
 def build(build_dir, log):
