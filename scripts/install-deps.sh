@@ -12,7 +12,7 @@ packages=(
   clang libclang-rt-14-dev  # scripts/fuzz.sh: the clang driver and libFuzzer + sanitizer runtimes
   python3 python3-matplotlib python3-scipy  # scipy: independent ODE reference in the physics tests
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest  # the Python package (python/)
-  chromium chromium-driver python3-selenium  # the HTML reports opened in headless Chromium (tests/output)
+  chromium chromium-driver python3-selenium fonts-liberation  # the HTML reports opened in headless Chromium (tests/output)
 )
 missing=()
 for p in "${packages[@]}"; do
