@@ -122,9 +122,9 @@ Command add_paper_command(CLI::App& app) {
               read_comparison(o->out, table, figures);
             }
             write_file_atomically(o->out + "/report.html", paper_report_html(runs, table, figures));
-            std::cout << "report: " << o->out
-                      << "/report.html (open it in a browser); comparison table: " << o->out
-                      << "/report.md; ParaView: open " << o->out << "/<case>/vtk/settling.pvd\n";
+            std::cout << "report: " << o->out << "/report.html (open it in a browser); ";
+            if (o->plots) std::cout << "comparison table: " << o->out << "/report.md; ";
+            std::cout << "ParaView: open " << o->out << "/<case>/vtk/settling.pvd\n";
             return 0;
           }};
 }
