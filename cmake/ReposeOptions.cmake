@@ -5,6 +5,9 @@ target_compile_options(repose_options INTERFACE
   # Bit-reproducible floating point: no fused multiply-add contraction, no fast-math.
   -ffp-contract=off
   $<$<BOOL:${REPOSE_WARNINGS_AS_ERRORS}>:-Werror>)
+if(REPOSE_CHECKED_STL)
+  target_compile_definitions(repose_options INTERFACE _GLIBCXX_ASSERTIONS)
+endif()
 if(REPOSE_SANITIZE)
   target_compile_options(repose_options INTERFACE
     -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "html_page.hpp"
+#include "near_wall.hpp"
 #include "repose/error.hpp"
 #include "repose/output/report.hpp"
 
@@ -45,16 +46,6 @@ json shape_json(const Particle& p) {
   for (const Vec3& v : p.hull.vertices) append(hull, v);
   return {{"name", p.name},       {"length", p.length},     {"surface", draw_hull ? "convex hull" : "mesh"},
           {"vertices", vertices}, {"triangles", triangles}, {"hull_vertices", hull}};
-}
-
-// The hull vertices within `eps` of the wall: the points the engine treats as touching (as the ParaView
-// markers).
-json touching(const Particle& p, const Quat& q, const Vec3& com, double eps) {
-  json ids = json::array();
-  const Mat3 r = q.toRotationMatrix();
-  for (std::size_t i = 0; i < p.hull.vertices.size(); ++i)
-    if (r.row(2).dot(p.hull.vertices[i]) + com.z() <= eps) ids.push_back(i);
-  return ids;
 }
 
 // The samples the page keeps: every k-th, k as small as keeps at most kReportMaxFrames, and the last.
@@ -97,7 +88,7 @@ json run_json(const SettleRecording& run) {
     contact.push_back(static_cast<int>(s.contact));
     kinetic.push_back(rounded(s.kinetic_energy));
     potential.push_back(rounded(s.potential_energy));
-    contacts.push_back(touching(p, s.orientation, s.com, eps));
+    contacts.push_back(hull_vertices_near_wall(p, s.orientation, s.com, eps));
   }
   return {{"title", run.title.empty() ? p.name : run.title},
           {"shape", shape_json(p)},

@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "near_wall.hpp"
 #include "repose/error.hpp"
 #include "repose/output/files.hpp"
 
@@ -206,10 +207,8 @@ void VtkRecorder::write_frame(int index, double t, const Quat& orientation, cons
   // The markers: centre of mass, then the hull vertices within the contact threshold of the wall.
   std::vector<Vec3> markers{com};
   const double eps = contact_threshold_ * particle_.length;
-  for (const Vec3& v : particle_.hull.vertices) {
-    const Vec3 x = rot * v + com;
-    if (x.z() <= eps) markers.push_back(x);
-  }
+  for (int k : hull_vertices_near_wall(particle_, orientation, com, eps))
+    markers.push_back(rot * particle_.hull.vertices[static_cast<std::size_t>(k)] + com);
   std::vector<std::int64_t> connectivity, offsets;
   for (std::size_t i = 0; i < markers.size(); ++i) {
     connectivity.push_back(static_cast<std::int64_t>(i));

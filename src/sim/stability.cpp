@@ -71,14 +71,14 @@ double polygon_margin(const std::vector<Vec2>& hull, const Vec2& p) {
   double inside = std::numeric_limits<double>::infinity();
   bool outside = false;
   double outside_dist = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < hull.size(); ++i) {
-    const Vec2& a = hull[i];
-    const Vec2& b = hull[(i + 1) % hull.size()];
-    const Vec2 e = b - a;
-    const double signed_dist = (e.x() * (p.y() - a.y()) - e.y() * (p.x() - a.x())) / e.norm();
+  const Vec2* a = &hull.back();  // each edge a → b, the closing one first
+  for (const Vec2& b : hull) {
+    const Vec2 e = b - *a;
+    const double signed_dist = (e.x() * (p.y() - a->y()) - e.y() * (p.x() - a->x())) / e.norm();
     if (signed_dist < 0) outside = true;
     inside = std::min(inside, signed_dist);
-    outside_dist = std::min(outside_dist, segment_distance(a, b, p));
+    outside_dist = std::min(outside_dist, segment_distance(*a, b, p));
+    a = &b;
   }
   return outside ? -outside_dist : inside;
 }

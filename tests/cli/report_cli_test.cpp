@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "../support/report_page.hpp"
 #include "cli_test_support.hpp"
 #include "run_cli.hpp"
 
@@ -22,14 +23,7 @@ using repose::test::shell_quote;
 using repose::test::without_timing;
 
 // The JSON a report page embeds.
-json page_data(const fs::path& page) {
-  const std::string text = read_file(page);
-  const std::string open = "<script id=\"repose-data\" type=\"application/json\">";
-  const auto begin = text.find(open);
-  EXPECT_NE(begin, std::string::npos) << page;
-  const auto end = text.find("</script>", begin);
-  return json::parse(text.substr(begin + open.size(), end - begin - open.size()));
-}
+json page_data(const fs::path& page) { return repose::test::report_page_data(read_file(page)); }
 
 class ReportCli : public repose::test::TempDirTest {};
 

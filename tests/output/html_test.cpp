@@ -16,21 +16,13 @@
 #include <string>
 #include <vector>
 
+#include "../support/report_page.hpp"
 #include "output/html_page.hpp"
 
 namespace repose {
 namespace {
 
 using nlohmann::json;
-
-// The JSON in <script id="repose-data"> (the writer puts "\u003c" for "<", the same to a JSON parser).
-json embedded_data(const std::string& page) {
-  const std::string open = "<script id=\"repose-data\" type=\"application/json\">";
-  const auto begin = page.find(open);
-  EXPECT_NE(begin, std::string::npos);
-  const auto end = page.find("</script>", begin);
-  return json::parse(page.substr(begin + open.size(), end - begin - open.size()));
-}
 
 std::size_t count(const std::string& text, const std::string& what) {
   std::size_t n = 0;
@@ -57,7 +49,7 @@ TEST(HtmlReport, SettleDataDescribesTheRunAndEndsOnItsRestPose) {
   ASSERT_EQ(run.result.status, Status::rest);
   ASSERT_GT(samples.size(), kReportMaxFrames);  // so that thinning is exercised
   const std::string page = settle_report_html(run);
-  const json data = embedded_data(page);
+  const json data = test::report_page_data(page);
   EXPECT_EQ(data["kind"], "settle");
   EXPECT_EQ(data["title"], "a cube");
   EXPECT_EQ(data["summary"]["status"], "rest");
@@ -106,7 +98,7 @@ TEST(HtmlReport, APageIsOneWellFormedFileWhateverTheNames) {
   // else does a script end: the title cannot close the data element.
   EXPECT_EQ(count(page, "<script"), 4u);
   EXPECT_EQ(count(page, "</script>"), 4u);
-  EXPECT_EQ(embedded_data(page)["title"], run.title);
+  EXPECT_EQ(test::report_page_data(page)["title"], run.title);
   EXPECT_NE(page.find("<title>repose settle: &lt;/script&gt;&lt;script&gt;alert(1)&lt;/script&gt; &amp; "
                       "&lt;b&gt;</title>"),
             std::string::npos);
@@ -125,7 +117,7 @@ TEST(HtmlReport, ALargeMeshIsDrawnAsItsHull) {
   SettleRecording run;
   run.particle = &grain;
   run.result.status = Status::max_steps;
-  const json shape = embedded_data(settle_report_html(run))["shape"];
+  const json shape = test::report_page_data(settle_report_html(run))["shape"];
   EXPECT_EQ(shape["surface"], "convex hull");
   EXPECT_EQ(shape["vertices"].size(), 3 * grain.hull.vertices.size());
   std::size_t triangles = 0;
@@ -139,7 +131,7 @@ TEST(HtmlReport, PosesAndPaperPagesCarryTheirResults) {
   StudySettings settings;
   settings.method = PoseMethod::quasi_static;
   PosesStudy study = prepare_study(box, landscape, settings);
-  const json data = embedded_data(poses_report_html(box, study));
+  const json data = test::report_page_data(poses_report_html(box, study));
   EXPECT_EQ(data["kind"], "poses");
   EXPECT_EQ(data["study"], json::parse(poses_json(study)));
 
@@ -147,8 +139,8 @@ TEST(HtmlReport, PosesAndPaperPagesCarryTheirResults) {
   const Particle cube = load_particle("box:x=1,y=1,z=1", 1.0);
   const std::vector<SettleRecording> runs = {cube_run(cube, samples)};
   const std::string png = std::string("\x89PNG\r\n\x1a\n", 8) + "pixels";
-  const json paper =
-      embedded_data(paper_report_html(runs, {{"cube", "rest face", "—", "1", "1"}}, {{"a figure", png}}));
+  const json paper = test::report_page_data(
+      paper_report_html(runs, {{"cube", "rest face", "—", "1", "1"}}, {{"a figure", png}}));
   EXPECT_EQ(paper["cases"].size(), 1u);
   EXPECT_EQ(paper["table"][0], json({"cube", "rest face", "—", "1", "1"}));
   EXPECT_EQ(paper["figures"][0]["src"], "data:image/png;base64,iVBORw0KGgpwaXhlbHM=");
