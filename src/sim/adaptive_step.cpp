@@ -3,8 +3,10 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
+#include <cstdint>
 #include <span>
 #include <utility>
 
@@ -27,7 +29,7 @@ void Settler::Impl::vertices_below(const Quat& qq, double level, std::vector<int
   out.clear();
   for (int k : walk_out)
     if (height_of(r3, k) <= level) out.push_back(k);
-  if (sorted) std::sort(out.begin(), out.end());
+  if (sorted) sort_vertex_ids(out);
 }
 
 // The same set, sorted, when it is known to lie within `among` (a superset): the members are picked from it
@@ -39,7 +41,39 @@ void Settler::Impl::vertices_below_among(const Quat& qq, double level, const std
   out.clear();
   for (int k : among)
     if (height_of(r3, k) <= level) out.push_back(k);
-  std::sort(out.begin(), out.end());
+  sort_vertex_ids(out);
+}
+
+// Whether the band picked from the step's candidates is the one a walk finds (the sanitizer build checks
+// every such pick); the walk's scratch is left as it was.
+bool Settler::Impl::band_matches_walk(double level) {
+  const std::vector<int> reachable = walk_out;
+  std::vector<int> walked;
+  vertices_below(q, level, walked, true);
+  walk_out = reachable;
+  return walked == contact;
+}
+
+// Distinct hull vertex indices into increasing order. A band of hundreds is written into a bitset of the
+// hull's vertices and read back in order: linear in the set plus its span/64 words, where a comparison sort
+// costs ~n·log n (a tenth of a 10,000-vertex grain's settle went to std::sort).
+void Settler::Impl::sort_vertex_ids(std::vector<int>& ids) {
+  if (ids.size() < 64) {
+    std::sort(ids.begin(), ids.end());
+    return;
+  }
+  int lo = ids.front(), hi = ids.front();
+  for (int k : ids) {
+    id_bits[static_cast<std::size_t>(k) >> 6] |= std::uint64_t{1} << (k & 63);
+    lo = std::min(lo, k);
+    hi = std::max(hi, k);
+  }
+  ids.clear();
+  for (std::size_t w = static_cast<std::size_t>(lo) >> 6; w <= static_cast<std::size_t>(hi) >> 6; ++w) {
+    for (std::uint64_t bits = id_bits[w]; bits != 0; bits &= bits - 1)
+      ids.push_back(static_cast<int>(64 * w) + std::countr_zero(bits));
+    id_bits[w] = 0;
+  }
 }
 
 // The height of the lowest hull vertex at orientation q (a walk downhill from the last lowest vertex).
@@ -137,6 +171,9 @@ void Settler::Impl::rotate_adaptive() {
   const sim::Support support_before = support;
   const int vertex_before = support_vertex;
   const bool finishing_before = finishing;
+  // This step's event candidates reach the band's level (not a smooth particle's, collected to the wall
+  // only), for the support they were collected about.
+  band_in_candidates = !smooth;
   update_contacts(rot.omega, rot.omega.cross(com - support.world));
   // A support chosen from several touching points by the impact law is chosen again at once with the motion
   // it leaves: the choice the paper's fixed step makes one step later, here at dt → 0. (An impact can switch

@@ -1,6 +1,7 @@
 // After every step: the contact set and type (Algorithm 1), the paper's stability test (section 2.4), and the
 // support the contacts call for (impact_support.hpp for several points on the wall).
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstdio>
 #include <utility>
@@ -23,9 +24,17 @@ void Settler::Impl::update_contacts(const Vec3& omega, const Vec3& com_velocity,
   // sitting on the band's edge (on a rotation axis) does not flicker in and out with round-off.
   const double contact_level = band + touch_tol;
   if (adaptive) {
-    // Only the vertices near the wall, by a walk (the lowest vertex is among them).
+    // Only the vertices near the wall: picked from the step's event candidates when they hold the band
+    // (the step's first update, before any change of support), else by a walk (the lowest vertex is among
+    // them). Both give the same set, in index order.
     for (int k : contact) in_contact[k] = 0;
-    vertices_below(q, contact_level, contact, true);
+    if (band_in_candidates) {
+      vertices_below_among(q, contact_level, event_candidates, contact);
+      assert(band_matches_walk(contact_level));
+    } else {
+      vertices_below(q, contact_level, contact, true);
+    }
+    band_in_candidates = false;
     const Vec3 r3 = q.toRotationMatrix().row(2).transpose();
     for (int k : contact) {
       z[k] = height_of(r3, k);

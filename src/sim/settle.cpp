@@ -110,6 +110,7 @@ Settler::Impl::Impl(const Particle& p, const SettleParams& prm, const Quat& orie
   z.resize(n);
   in_contact.resize(n);
   walk_visited.resize(n);
+  id_bits.resize((n + 63) / 64);
   lowest_body_height = INFINITY;
   for (const Vec3& v : p.hull.vertices) lowest_body_height = std::min(lowest_body_height, (q * v).z());
   com = Vec3(0, 0, params.drop_height - lowest_body_height);

@@ -140,7 +140,12 @@ struct Settler::Impl {
   // vertices of the last walk (the contact set, the last step's candidates).
   std::vector<char> walk_visited;  // scratch of hull size, all zero between uses
   std::vector<int> walk_out;       // scratch: a walk's vertices, then a step's reachable vertices
-  int lowest_vertex = 0;           // the lowest hull vertex at the last walk (its start)
+  std::vector<std::uint64_t>
+      id_bits;  // scratch of hull size in bits, all zero between uses (sort_vertex_ids)
+  // Set for the contact update that ends an adaptive step: the step's event candidates hold every vertex
+  // that can be in the band until the step's end, about the same support; the update picks its band there.
+  bool band_in_candidates = false;
+  int lowest_vertex = 0;  // the lowest hull vertex at the last walk (its start)
   std::vector<Phase> phases;
   double max_penetration = 0;
   double energy_start = 0;
@@ -164,6 +169,8 @@ struct Settler::Impl {
   void vertices_below(const Quat& qq, double level, std::vector<int>& out, bool sorted);  // adaptive_step.cpp
   void vertices_below_among(const Quat& qq, double level, const std::vector<int>& among,
                             std::vector<int>& out);  // adaptive_step.cpp
+  void sort_vertex_ids(std::vector<int>& ids);       // adaptive_step.cpp
+  bool band_matches_walk(double level);              // adaptive_step.cpp (a debug check)
   double lowest_height();                            // adaptive_step.cpp
   double smallest_moment() const;                    // adaptive_step.cpp
   std::array<double, 2> rate_coefficients() const;  // |ω|² ≤ a + b·θ after turning by θ   adaptive_step.cpp
