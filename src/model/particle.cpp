@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 #include "repose/error.hpp"
@@ -138,15 +139,26 @@ Particle make_particle(TriangleMesh mesh, const std::string& name, double densit
   if (mesh.triangles.empty() && options.inertia != InertiaModel::convex)
     throw Error(name + ": no faces (a point cloud of " + std::to_string(mesh.vertices.size()) +
                 " vertices); --inertia convex loads it as the solid convex hull of its points");
+  std::optional<MeshReport> file_report;
   if (options.repair || options.largest_component) {
     if (mesh.triangles.empty())
       throw Error(name +
                   ": --repair needs faces, and this file has none (a point cloud); --inertia convex "
                   "alone loads it");
+    // What the file holds (its duplicate vertices, degenerate triangles), counted as without --repair,
+    // before the repair changes it: the report describes the user's file, not the repaired surface.
+    TriangleMesh as_read = mesh;
+    file_report = clean_mesh(as_read, name);
     p.repair = repair_mesh(mesh, name, options.largest_component);
   }
 
   const MassProperties input_mass = input_mass_properties(mesh, name, density, p);
+  if (file_report) {
+    file_report->flipped = p.report.flipped;  // the repaired surface's orientation (faces: p.repair)
+    file_report->warnings.insert(file_report->warnings.end(), p.report.warnings.begin(),
+                                 p.report.warnings.end());
+    p.report = std::move(*file_report);
+  }
   // A solid's centre of mass lies inside its bounding box. When the signed volume is only round-off (a
   // nearly flat closed surface), the centre of mass comes out anywhere; such a mesh is no solid (found by
   // fuzz_mesh_ply: volume 0 after re-centring, centre of mass 1e7 away).

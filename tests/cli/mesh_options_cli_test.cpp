@@ -33,6 +33,24 @@ class MeshOptionsCli : public TempDirTest {
            "f 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";  // +y, −x
     return path;
   }
+  // The same open cube as a scanner or CAD export writes it: every face with corners of its own (5 faces ×
+  // 4 records of 8 positions: 12 duplicates) and one triangle with a repeated corner (degenerate).
+  std::string unwelded_open_cube_obj() {
+    const std::string path = (dir_ / "unwelded.obj").string();
+    std::ofstream out(path);
+    const int faces[5][4] = {{0, 3, 2, 1}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+    int record = 0;
+    for (const auto& face : faces) {
+      for (int c : face)
+        out << "v " << (c == 1 || c == 2 || c == 5 || c == 6) << " " << (c == 2 || c == 3 || c == 6 || c == 7)
+            << " " << (c >= 4) << "\n";
+      out << "f " << record + 1 << " " << record + 2 << " " << record + 3 << "\n"
+          << "f " << record + 1 << " " << record + 3 << " " << record + 4 << "\n";
+      record += 4;
+    }
+    out << "f 1 1 2\n";
+    return path;
+  }
 };
 
 TEST_F(MeshOptionsCli, InfoReadsAPointCloudInMillimetresAsItsConvexHullInMetres) {
@@ -78,6 +96,22 @@ TEST_F(MeshOptionsCli, AnOpenSurfaceLoadsWithRepairShellOrConvexAndSaysSo) {
   EXPECT_NEAR(numbers(shell["center_of_mass"])[2], 0.4, 1e-12);  // 4 walls at ½, the floor at 0
   const nlohmann::json hull = parse_json(run_cli("info " + shell_quote(open) + " --inertia convex --json"));
   EXPECT_NEAR(hull["volume"].get<double>(), 1.0, 1e-12);
+}
+
+// The "file" counts describe the user's file whatever is done to it after: the same with --repair as with
+// --inertia shell (which only cleans), counted from the file's 20 records of 8 corners.
+TEST_F(MeshOptionsCli, TheFileReportCountsTheFilesOwnDuplicatesAlsoWhenRepaired) {
+  const std::string path = unwelded_open_cube_obj();
+  for (const char* option : {" --repair", " --inertia shell"}) {
+    const nlohmann::json j = parse_json(run_cli("info " + shell_quote(path) + option + " --json"));
+    EXPECT_EQ(j["file"]["vertices"], 20) << option;
+    EXPECT_EQ(j["file"]["triangles"], 11) << option;
+    EXPECT_EQ(j["file"]["duplicate_vertices"], 12) << option;
+    EXPECT_EQ(j["file"]["degenerate_triangles"], 1) << option;
+  }
+  const nlohmann::json repaired = parse_json(run_cli("info " + shell_quote(path) + " --repair --json"));
+  EXPECT_NEAR(repaired["volume"].get<double>(), 1.0, 1e-12);  // a flat hole in a flat face: exact
+  EXPECT_EQ(repaired["repair"]["holes_filled"], 1);
 }
 
 TEST_F(MeshOptionsCli, SettleAndPosesTakeTheSameOptions) {
