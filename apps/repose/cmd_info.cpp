@@ -38,13 +38,14 @@ nlohmann::json repair_json(const RepairReport& r) {
           {"notes", r.notes}};
 }
 
-nlohmann::json info_json(const Particle& p, double density) {
+nlohmann::json info_json(const Particle& p, double density, const std::string& unit) {
   const Aabb box{p.bounds.min + p.input_offset, p.bounds.max + p.input_offset};
   nlohmann::json j;
   j["source"] = p.name;
   j["density"] = density;
   j["inertia_model"] = to_string(p.options.inertia);
   j["scale"] = p.options.scale;
+  j["length_unit"] = unit;
   j["surface_is_hull"] = p.surface_is_hull;
   j["vertices"] = p.mesh.vertices.size();
   j["triangles"] = p.mesh.triangles.size();
@@ -69,12 +70,17 @@ nlohmann::json info_json(const Particle& p, double density) {
   return j;
 }
 
-void print_info(const Particle& p, double density) {
+void print_info(const Particle& p, double density, const std::string& unit) {
   const Aabb box{p.bounds.min + p.input_offset, p.bounds.max + p.input_offset};
   const Mat3 axes = p.mass.principal_axes;
   const bool shell = p.options.inertia == InertiaModel::shell;
   std::cout << "particle            " << p.name << "\n";
   if (p.options.scale != 1) std::cout << "scale               " << num(p.options.scale) << "\n";
+  std::cout << "length unit         " << unit
+            << (p.options.scale == 1
+                    ? " (the coordinates as given; --mesh-units converts a file in mm, cm or in)"
+                    : "")
+            << "\n";
   std::cout << "surface             " << p.mesh.vertices.size() << " vertices, " << p.mesh.triangles.size()
             << " triangles" << (p.surface_is_hull ? " (the convex hull of the file's points)" : "") << "\n"
             << "inertia model       " << to_string(p.options.inertia)
@@ -140,10 +146,13 @@ Command add_info_command(CLI::App& app) {
               for (Vec3& v : out.vertices) v += p.input_offset;
               write_stl(out, opts->write_stl);
             }
+            // Lengths are read in the run's unit (m, or cm with --units cgs): --mesh-units converts to it,
+            // and without it (or with --scale) the coordinates are taken to be in it.
+            const std::string unit = opts->units == "cgs" ? "cm" : "m";
             if (opts->json)
-              std::cout << info_json(p, opts->density).dump(2) << "\n";
+              std::cout << info_json(p, opts->density, unit).dump(2) << "\n";
             else
-              print_info(p, opts->density);
+              print_info(p, opts->density, unit);
             return 0;
           }};
 }

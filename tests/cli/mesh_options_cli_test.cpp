@@ -66,6 +66,7 @@ TEST_F(MeshOptionsCli, InfoReadsAPointCloudInMillimetresAsItsConvexHullInMetres)
   EXPECT_NEAR(numbers(j["bounding_box"]["max"])[2], 0.03, 1e-15);
   EXPECT_NEAR(j["characteristic_length"].get<double>(), std::cbrt(6 * 6e-6 / M_PI), 1e-15);
   EXPECT_EQ(j["file"]["vertices"], 10);
+  EXPECT_EQ(j["length_unit"], "m");
   // --scale is the same factor given as a number; the two cannot be combined.
   const nlohmann::json s =
       parse_json(run_cli("info " + shell_quote(cloud) + " --inertia convex --scale 0.001 --json"));
@@ -78,6 +79,7 @@ TEST_F(MeshOptionsCli, InfoReadsAPointCloudInMillimetresAsItsConvexHullInMetres)
   const nlohmann::json cgs = parse_json(
       run_cli("info " + shell_quote(cloud) + " --inertia convex --mesh-units mm --units cgs --json"));
   EXPECT_NEAR(cgs["volume"].get<double>(), 6.0, 1e-12);
+  EXPECT_EQ(cgs["length_unit"], "cm");
 }
 
 TEST_F(MeshOptionsCli, AnOpenSurfaceLoadsWithRepairShellOrConvexAndSaysSo) {
