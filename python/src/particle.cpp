@@ -21,8 +21,11 @@ MeshOptions mesh_options(double scale, const std::optional<std::string>& units, 
                          bool repair, bool largest_component, const std::optional<std::vector<double>>& com) {
   if (!std::isfinite(scale) || scale <= 0)
     throw Error("scale must be a finite number > 0, got " + std::to_string(scale));
+  if (units && scale != 1)  // as --mesh-units and --scale at the command line: one way to give the factor
+    throw Error("units and scale: give one of them (units=\"" + *units + "\" is the factor " +
+                std::to_string(mesh_unit_scale(*units)) + ")");
   MeshOptions o;
-  o.scale = scale * (units ? mesh_unit_scale(*units) : 1.0);
+  o.scale = units ? mesh_unit_scale(*units) : scale;
   o.inertia = parse_inertia_model(inertia);
   o.repair = repair || largest_component;
   o.largest_component = largest_component;
@@ -49,8 +52,9 @@ PyParticle load(const std::string& source, double density, const std::optional<s
 
 PyParticle from_arrays(const py::array_t<double, py::array::c_style | py::array::forcecast>& vertices,
                        const py::array_t<long long, py::array::c_style | py::array::forcecast>& faces,
-                       double density, const std::string& inertia, bool repair, const std::string& name,
-                       const std::optional<std::vector<double>>& com) {
+                       double density, const std::optional<std::string>& units, double scale,
+                       const std::string& inertia, bool repair, bool largest_component,
+                       const std::string& name, const std::optional<std::vector<double>>& com) {
   check_density(density);
   if (vertices.ndim() != 2 || vertices.shape(1) != 3)
     throw Error(name + ": vertices must be an array of shape (N, 3)");
@@ -74,7 +78,7 @@ PyParticle from_arrays(const py::array_t<double, py::array::c_style | py::array:
       mesh.triangles.push_back(t);
     }
   }
-  const MeshOptions options = mesh_options(1.0, std::nullopt, inertia, repair, false, com);
+  const MeshOptions options = mesh_options(scale, units, inertia, repair, largest_component, com);
   py::gil_scoped_release release;
   return {std::make_shared<const Particle>(make_particle(std::move(mesh), name, density, options)), density};
 }
@@ -87,6 +91,40 @@ py::array_t<double> points(const std::vector<Vec3>& p) {
   return out;
 }
 
+// What the file held (MeshReport) and what --repair did (RepairReport), as dicts with the keys of
+// `repose info --json`'s "file" and "repair".
+py::dict file_report(const MeshReport& r) {
+  py::dict d;
+  d["vertices"] = r.input_vertices;
+  d["triangles"] = r.input_triangles;
+  d["duplicate_vertices"] = r.welded_vertices;
+  d["degenerate_triangles"] = r.degenerate_triangles;
+  d["unused_vertices"] = r.unused_vertices;
+  d["flipped"] = r.flipped;
+  d["warnings"] = r.warnings;
+  return d;
+}
+
+py::object repair_report(const std::optional<RepairReport>& repair) {
+  if (!repair) return py::none();
+  const RepairReport& r = *repair;
+  py::dict d;
+  d["merged_vertices"] = r.merged_vertices;
+  d["stitched_edges"] = r.stitched_edges;
+  d["duplicate_faces"] = r.duplicate_faces;
+  d["degenerate_faces"] = r.degenerate_faces;
+  d["non_manifold_vertices"] = r.non_manifold_vertices;
+  d["flipped_faces"] = r.flipped_faces;
+  d["holes_filled"] = r.holes_filled;
+  d["area_added"] = r.area_added;
+  d["volume_change"] = r.volume_change;
+  d["input_components"] = r.input_components;
+  d["kept_components"] = r.kept_components;
+  d["flat_components"] = r.flat_components;
+  d["notes"] = r.notes;
+  return d;
+}
+
 }  // namespace
 
 void bind_particle(py::module_& m) {
@@ -95,8 +133,10 @@ void bind_particle(py::module_& m) {
                   py::arg("scale") = 1.0, py::arg("inertia") = "exact", py::arg("repair") = false,
                   py::arg("largest_component") = false, py::arg("com") = py::none())
       .def_static("from_arrays", &from_arrays, py::arg("vertices"), py::arg("faces"),
-                  py::arg("density") = 1.0, py::arg("inertia") = "exact", py::arg("repair") = false,
-                  py::arg("name") = "arrays", py::arg("com") = py::none())
+                  py::arg("density") = 1.0, py::arg("units") = py::none(), py::arg("scale") = 1.0,
+                  py::arg("inertia") = "exact", py::arg("repair") = false,
+                  py::arg("largest_component") = false, py::arg("name") = "arrays",
+                  py::arg("com") = py::none())
       .def_property_readonly("name", [](const PyParticle& p) { return p.model->name; })
       .def_property_readonly("density", [](const PyParticle& p) { return p.density; })
       .def_property_readonly("mass", [](const PyParticle& p) { return p.model->mass.mass; })
@@ -140,7 +180,12 @@ void bind_particle(py::module_& m) {
                              [](const PyParticle& p) {
                                return points({p.model->bounds.min, p.model->bounds.max});
                              })
-      .def_property_readonly("smooth", [](const PyParticle& p) { return is_smooth_surface(*p.model); });
+      .def_property_readonly("smooth", [](const PyParticle& p) { return is_smooth_surface(*p.model); })
+      .def_property_readonly("scale", [](const PyParticle& p) { return p.model->options.scale; })
+      .def_property_readonly("surface_is_hull", [](const PyParticle& p) { return p.model->surface_is_hull; })
+      .def_property_readonly("file_report", [](const PyParticle& p) { return file_report(p.model->report); })
+      .def_property_readonly("repair_report",
+                             [](const PyParticle& p) { return repair_report(p.model->repair); });
 }
 
 }  // namespace repose::python

@@ -114,6 +114,65 @@ def test_unit_cube_from_arrays():
     assert len(p.hull_vertices) == 8 and len(p.hull_faces) == 6
 
 
+def cube_arrays(side=1.0, offset=(0.0, 0.0, 0.0)):
+    v = np.array([[x, y, z] for x in (0, side) for y in (0, side) for z in (0, side)], dtype=float)
+    f = np.array([[0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5], [0, 4, 5], [0, 5, 1],
+                  [2, 3, 7], [2, 7, 6], [0, 2, 6], [0, 6, 4], [1, 5, 7], [1, 7, 3]])
+    return v + np.array(offset), f
+
+
+def test_a_point_cloud_in_millimetres_is_its_solid_hull_in_metres():
+    # The corners of a 10 x 20 x 30 mm box and two points inside: 6e-6 m^3, 6 g at 1000 kg/m^3.
+    corners = [[x, y, z] for x in (0, 10) for y in (0, 20) for z in (0, 30)]
+    v = np.array(corners + [[5, 10, 15], [2, 3, 4]], dtype=float)
+    p = repose.Particle.from_arrays(v, np.zeros((0, 3), dtype=int), density=1000, units="mm",
+                                    inertia="convex")
+    assert p.surface_is_hull and p.inertia_model == "convex" and p.scale == pytest.approx(1e-3)
+    assert p.volume == pytest.approx(6e-6, rel=1e-12)
+    assert p.mass == pytest.approx(6e-3, rel=1e-12)
+    # m/12 (b^2 + c^2) about x, with b, c in metres
+    assert p.inertia[0, 0] == pytest.approx(6e-3 / 12 * (0.02 ** 2 + 0.03 ** 2), rel=1e-12)
+    assert p.file_report["vertices"] == 10
+    with pytest.raises(ValueError, match="units and scale"):
+        repose.Particle.from_arrays(v, np.zeros((0, 3), dtype=int), units="mm", scale=2.0, inertia="convex")
+
+
+def test_a_hollow_cube_has_the_shells_inertia():
+    # A thin-walled cube of side a and mass M: I = 5/18 M a^2 about every axis through its centre (six plates:
+    # two of M/6 about their normal, M/6 a^2/6 each, and four edge-on, M/6 (a^2/12 + a^2/4) each).
+    v, f = cube_arrays(2.0)
+    p = repose.Particle.from_arrays(v, f, density=0.5, inertia="shell")
+    mass = 0.5 * 6 * 2.0 ** 2
+    assert p.mass == pytest.approx(mass, rel=1e-14)
+    assert np.allclose(p.inertia, np.eye(3) * 5 / 18 * mass * 2.0 ** 2, rtol=0, atol=1e-13)
+
+
+def test_repair_closes_a_hole_and_reports_it():
+    v, f = cube_arrays()
+    top = [i for i, t in enumerate(f) if all(v[k][2] == 1 for k in t)]
+    assert len(top) == 2
+    open_cube = np.delete(f, top, axis=0)
+    with pytest.raises(ValueError, match="repair"):
+        repose.Particle.from_arrays(v, open_cube)
+    p = repose.Particle.from_arrays(v, open_cube, repair=True)
+    assert p.volume == pytest.approx(1.0, rel=1e-12)  # a flat hole in a flat face: filled exactly
+    assert p.repair_report["holes_filled"] == 1
+    assert p.file_report["triangles"] == 10
+    assert repose.Particle.from_arrays(*cube_arrays()).repair_report is None
+
+
+def test_largest_component_keeps_the_bigger_of_two_cubes():
+    small_v, small_f = cube_arrays(1.0)
+    big_v, big_f = cube_arrays(2.0, offset=(5.0, 0.0, 0.0))
+    v = np.vstack([small_v, big_v])
+    f = np.vstack([small_f, big_f + len(small_v)])
+    both = repose.Particle.from_arrays(v, f, repair=True)
+    assert both.volume == pytest.approx(9.0, rel=1e-12)  # one rigid body of two parts
+    big = repose.Particle.from_arrays(v, f, largest_component=True)
+    assert big.volume == pytest.approx(8.0, rel=1e-12)
+    assert big.repair_report["input_components"] == 2 and big.repair_report["kept_components"] == 1
+
+
 def test_a_mesh_in_millimetres():
     metres = repose.Particle.load(str(DATA / "cube.off"))
     mm = repose.Particle.load(str(DATA / "cube.off"), units="mm")
