@@ -27,6 +27,28 @@ struct Source {
   MeshOptions mesh;
 };
 
+// "X,Y,Z": three finite numbers (a line's --com).
+Vec3 parse_point(const std::string& text) {
+  Vec3 p;
+  std::size_t pos = 0;
+  for (int k = 0; k < 3; ++k) {
+    const std::size_t end = k < 2 ? text.find(',', pos) : text.size();
+    const std::string part = end == std::string::npos ? "" : text.substr(pos, end - pos);
+    std::size_t used = 0;
+    double x = NAN;
+    try {
+      x = std::stod(part, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (part.empty() || used != part.size() || !std::isfinite(x))
+      throw Error("option --com must be X,Y,Z (three finite numbers), got '" + text + "'");
+    p[k] = x;
+    pos = end + 1;
+  }
+  return p;
+}
+
 // The options after a manifest line's path ("--mesh-units mm --repair"), on top of `mesh`.
 MeshOptions parse_line_options(const std::string& text, MeshOptions mesh, bool lengths_in_cm,
                                const std::string& where) {
@@ -55,6 +77,8 @@ MeshOptions parse_line_options(const std::string& text, MeshOptions mesh, bool l
       } else if (w == "--mesh-units") {
         mesh.scale = mesh_unit_scale(value(), lengths_in_cm);
         units_given = true;
+      } else if (w == "--com") {
+        mesh.center_of_mass = parse_point(value());
       } else if (w == "--scale") {
         const std::string& v = value();
         std::size_t used = 0;
@@ -69,9 +93,9 @@ MeshOptions parse_line_options(const std::string& text, MeshOptions mesh, bool l
         mesh.scale = scale;
         scale_given = true;
       } else {
-        throw Error(
-            "unknown option '" + w +
-            "' (a manifest line takes --scale, --mesh-units, --inertia, --repair, --largest-component)");
+        throw Error("unknown option '" + w +
+                    "' (a manifest line takes --scale, --mesh-units, --inertia, --repair, "
+                    "--largest-component, --com)");
       }
     } catch (const Error& e) {
       const std::string message = e.what();

@@ -325,6 +325,15 @@ TEST(ManifestOptions, ALineOverridesTheJobsMeshOptionsForItsOwnInput) {
   EXPECT_NE(
       message_of([&] { resolve_particles({}, manifest.string()); }).find("either --scale or --mesh-units"),
       std::string::npos);
+  // A line's known centre of mass (a weighted part), in its file's coordinates.
+  std::ofstream(manifest) << "box:x=1,y=1,z=1 --com 0.1,-0.2,3e-2\nbox:x=1,y=1,z=1 --com 1,2\n";
+  const std::string bad_com = message_of([&] { resolve_particles({}, manifest.string()); });
+  EXPECT_EQ(bad_com.rfind(manifest.string() + ": line 2: option --com must be X,Y,Z", 0), 0u) << bad_com;
+  std::ofstream(manifest) << "box:x=1,y=1,z=1 --com 0.1,-0.2,3e-2\n";
+  const std::vector<CampaignParticle> weighted = resolve_particles({}, manifest.string());
+  ASSERT_EQ(weighted.size(), 1u);
+  ASSERT_TRUE(weighted[0].mesh.center_of_mass.has_value());
+  EXPECT_EQ(*weighted[0].mesh.center_of_mass, Vec3(0.1, -0.2, 0.03));
   std::ofstream(manifest) << "box:x=1,y=1,z=1 --inertia\n";
   EXPECT_NE(message_of([&] { resolve_particles({}, manifest.string()); }).find("--inertia needs a value"),
             std::string::npos);
