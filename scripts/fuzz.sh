@@ -13,7 +13,7 @@ seconds="${1:-30}"
 shift || true
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] ||
-  targets=(mesh_stl mesh_obj mesh_ply mesh_off mesh_xyz shape_spec orientation_spec scenario poses_result)
+  targets=(mesh_stl mesh_obj mesh_ply mesh_off mesh_xyz mesh_options shape_spec orientation_spec scenario poses_result)
 
 scripts/install-deps.sh
 cmake --preset fuzz >/dev/null

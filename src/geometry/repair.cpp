@@ -63,6 +63,32 @@ std::array<Vec3, 3> corners(const Mesh& m, FaceIndex f) {
   return p;
 }
 
+// Whether a hole's border lies in a plane (within 1e-12 of its size) and passes through no point twice: then
+// CGAL's 2D constrained Delaunay triangulation fills it (flat, the common case of a scan's cut or a CAD
+// part's missing face). Otherwise the search over the border's triangulations does: CGAL's 2D path
+// projects the border on a plane it fits and dereferences a null vertex when two border points project to
+// one (found by fuzz_mesh_options, a four-point border spanning 5 units in z).
+bool flat_border(const Mesh& m, HalfedgeIndex h) {
+  std::vector<Vec3> border;
+  for (const HalfedgeIndex e : CGAL::halfedges_around_face(h, m)) border.push_back(vec(m.point(m.target(e))));
+  Vec3 normal = Vec3::Zero(), centre = Vec3::Zero();  // Newell's normal of the closed polygon
+  for (std::size_t i = 0; i < border.size(); ++i) {
+    normal += border[i].cross(border[(i + 1) % border.size()]);
+    centre += border[i];
+  }
+  centre /= static_cast<double>(border.size());
+  double size = 0, off_plane = 0;
+  for (const Vec3& p : border) size = std::max(size, (p - centre).norm());
+  if (!(normal.norm() > 0) || !(size > 0)) return false;
+  normal.normalize();
+  for (const Vec3& p : border) off_plane = std::max(off_plane, std::abs(normal.dot(p - centre)));
+  if (off_plane > 1e-12 * size) return false;
+  std::sort(border.begin(), border.end(), [](const Vec3& a, const Vec3& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  });
+  return std::adjacent_find(border.begin(), border.end()) == border.end();
+}
+
 // Fills every hole with a flat triangulation of its border; marks the patch faces in `patch`.
 void fill_holes(Mesh& m, const std::string& name, Mesh::Property_map<FaceIndex, bool>& patch,
                 RepairReport& r) {
@@ -73,12 +99,10 @@ void fill_holes(Mesh& m, const std::string& name, Mesh::Property_map<FaceIndex, 
         std::distance(CGAL::halfedges_around_face(h, m).begin(), CGAL::halfedges_around_face(h, m).end()));
     std::vector<FaceIndex> faces;
     // No refinement or fairing: the patch uses only the border's vertices, so it lies inside their convex
-    // hull and the particle's convex hull (its contact geometry) is unchanged. The 2D constrained Delaunay
-    // triangulation is tried first: flat for a planar hole, the common case of a scan's cut.
-    PMP::triangulate_hole(
-        m, h, std::back_inserter(faces),
-        CGAL::parameters::use_2d_constrained_delaunay_triangulation(true).do_not_use_cubic_algorithm(
-            edges > kMaxCubicHole));
+    // hull and the particle's convex hull (its contact geometry) is unchanged.
+    PMP::triangulate_hole(m, h, std::back_inserter(faces),
+                          CGAL::parameters::use_2d_constrained_delaunay_triangulation(flat_border(m, h))
+                              .do_not_use_cubic_algorithm(edges > kMaxCubicHole));
     if (faces.empty()) {
       throw Error(name + ": cannot fill a hole of " + std::to_string(edges) +
                   " border edges (each triangulation of its border makes a non-manifold edge or a zero-area "

@@ -204,6 +204,17 @@ Particle make_particle(TriangleMesh mesh, const std::string& name, double densit
                               : ": not a solid: the surface intersects itself (its centre of mass is outside "
                                 "its convex hull)"));
 
+  // Nor are its principal moments a body's: each is the sum of two of the second moments Σm·x², Σm·y², Σm·z²
+  // along the principal axes, which are never negative, so the largest is at most the sum of the other two
+  // (equal for a flat plate; 1e-9 of the trace for round-off). A surface through itself can break this with
+  // its centre of mass inside the hull (found by fuzz_mesh_options: a repaired part with a moment of −0.47).
+  const Vec3& moments = p.mass.principal_moments;
+  const double trace = moments.sum();
+  if (!(trace / 2 - moments.maxCoeff() >= -1e-9 * std::abs(trace)))
+    throw Error(name + ": not a solid: its principal moments of inertia " + str(moments[0]) + ", " +
+                str(moments[1]) + ", " + str(moments[2]) + " are no body's (the surface intersects itself)" +
+                (options.inertia == InertiaModel::convex ? "" : "; --inertia convex loads its convex hull"));
+
   compute_dihedral_facts(p.mesh, p.length, p.max_dihedral_angle, p.convex_surface);
   for (const HullFace& face : p.hull.faces)
     p.face_stability_margin.push_back(face_stability_margin(p.hull, face, Vec3::Zero()));

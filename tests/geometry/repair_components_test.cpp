@@ -1,6 +1,7 @@
 // Tests of repair_mesh on several parts (touching, disjoint, flat), random damage and bad input; the shared
 // meshes and tolerances are in repair_support.hpp and repair_test.cpp.
 #include "repair_support.hpp"
+#include "repose/io/mesh_io.hpp"
 
 namespace repose::repair_test {
 namespace {
@@ -161,6 +162,25 @@ TEST(RepairMesh, DegenerateInputIsRejectedNotCrashed) {
   EXPECT_THROW(repair_mesh(sheet, "scan.stl", false), Error);
   EXPECT_EQ(sheet.vertices, before.vertices);  // unchanged on error
   EXPECT_EQ(sheet.triangles, before.triangles);
+}
+
+// Found by fuzz_mesh_options: the hole left by this OBJ's duplicate faces is a four-point border spanning 5
+// units in z. CGAL's 2D hole filling projects it on a fitted plane and crashed (a null vertex); a border that
+// is not flat now goes to the search over its triangulations. The result is the tetrahedron of the four
+// points, volume |det(b − a, c − a, d − a)|/6, computed here.
+TEST(RepairMesh, ANonFlatHoleIsFilledWithoutCrashing) {
+  const std::string obj =
+      "v 0 0 5\nv 1 0 0\nv 1 1 0 0 0 0\nv 1 1 0\nv  1 1 1\nw 0 1 1\nf 1 8\nf 3 8 7\nf 4 1 5\nf 4 8 \n"
+      "v 0 1 0\nv  1 1 1\nv 0 1 1\nf 1 8\nf 3 8 7\nf 1\nf 1 8\nf 3 8 7\nf  8 5\n";
+  TriangleMesh mesh = read_mesh_from_memory(obj, "scan.obj");
+  const RepairReport r = repair_mesh(mesh, "scan.obj", false);
+  EXPECT_EQ(r.holes_filled, 1);
+  TriangleMesh solid = mesh;
+  validate_mesh(solid, "repaired");
+  ASSERT_EQ(solid.vertices.size(), 4u);
+  const Vec3 a(1, 1, 0), b(0, 0, 5), c(1, 1, 1), d(0, 1, 1);
+  const double volume = std::abs((b - a).dot((c - a).cross(d - a))) / 6;
+  EXPECT_NEAR(compute_mass_properties(solid, 1.0).volume, volume, 1e-14);
 }
 
 }  // namespace

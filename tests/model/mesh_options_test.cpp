@@ -11,6 +11,7 @@
 #include <repose/campaign/campaign.hpp>
 #include <repose/error.hpp>
 #include <repose/geometry/shapes.hpp>
+#include <repose/io/mesh_io.hpp>
 #include <repose/model/particle.hpp>
 #include <repose/sim/settle.hpp>
 #include <string>
@@ -255,6 +256,29 @@ TEST(MeshAdvice, UnloadableSurfacesNameTheOptionThatLoadsThem) {
               make_particle(cloud({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}), "flat.xyz", 1.0, convex());
             }).rfind("flat.xyz: ", 0),
             0u);
+}
+
+// Found by fuzz_mesh_options: an open, overlapping pair of boxes whose largest part, once repaired, is closed
+// and consistently wound with its centre of mass inside its hull, but passes through itself: its inertia
+// tensor had a principal moment of −0.47. No body has a principal moment above the sum of the other two
+// (each is a sum of two non-negative second moments), so such a surface is refused as no solid.
+TEST(MeshAdvice, ASurfaceThroughItselfWithAnImpossibleInertiaIsNoSolid) {
+  const std::string obj =
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\n"
+      "f 3 8 7\nf 4 1 5\nf 4 5 8\nv 3 0 0\nv 5 0 0\nv 5 2 0\nv 3 2 0\nv 4 0 2\nv 5 0 2\nv 5 2 2\nv 3 2 2\n"
+      "f 9 11 10\nf 1 12 11\nf 13 14 15\nf 13 15 15 2 2\nv 3 2 2\nf 9 11 10\nf 9 12 11\nf 13 13 15\n"
+      "f 13 15 16\nf 9 10 14\nf 9 14 13\nf 10 11 15\nf 10 15 14\nf 11 12 16\nf 11 16 15\nf 12 9 13\n"
+      "f 12 13 16\n";
+  MeshOptions largest;
+  largest.largest_component = true;
+  const std::string m =
+      message_of([&] { make_particle(read_mesh_from_memory(obj, "parts.obj"), "parts.obj", 1.0, largest); });
+  EXPECT_EQ(m.rfind("parts.obj: not a solid: its principal moments of inertia", 0), 0u) << m;
+  EXPECT_NE(m.find("--inertia convex"), std::string::npos) << m;
+  // Its hull is a body.
+  const Particle hull = make_particle(read_mesh_from_memory(obj, "parts.obj"), "parts.obj", 1.0, convex());
+  const Vec3 pm = hull.mass.principal_moments;
+  EXPECT_GE(pm.sum() / 2 - pm.maxCoeff(), 0);
 }
 
 TEST(MeshAdvice, ANonManifoldFinLoadsByRepairOrShell) {
