@@ -49,7 +49,7 @@ MassProperties input_mass_properties(TriangleMesh& mesh, const std::string& name
         p.report = validate_mesh(mesh, name);
       } catch (const SurfaceError& e) {
         throw SurfaceError(std::string(e.what()) +
-                           "; --repair closes it, or --inertia convex or --inertia shell loads it as it is");
+                           "; --repair mends it, or --inertia convex or --inertia shell loads it as it is");
       }
       return compute_mass_properties(mesh, density);
     case InertiaModel::shell:

@@ -80,6 +80,14 @@ TEST_F(MeshOptionsCli, InfoReadsAPointCloudInMillimetresAsItsConvexHullInMetres)
       run_cli("info " + shell_quote(cloud) + " --inertia convex --mesh-units mm --units cgs --json"));
   EXPECT_NEAR(cgs["volume"].get<double>(), 6.0, 1e-12);
   EXPECT_EQ(cgs["length_unit"], "cm");
+  // The same corners as an OBJ with vertices only (a scanner's point export) load alike.
+  const std::string obj = (dir_ / "box_mm.obj").string();
+  std::ofstream(obj) << "v 0 0 0\nv 10 0 0\nv 0 20 0\nv 10 20 0\nv 0 0 30\nv 10 0 30\nv 0 20 30\nv 10 20 30\n"
+                        "v 5 10 15\n";
+  const nlohmann::json o = parse_json(
+      run_cli("info " + shell_quote(obj) + " --inertia convex --mesh-units mm --density 1000 --json"));
+  EXPECT_EQ(o["volume"], j["volume"]);
+  EXPECT_EQ(o["file"]["vertices"], 9);
 }
 
 TEST_F(MeshOptionsCli, AnOpenSurfaceLoadsWithRepairShellOrConvexAndSaysSo) {
