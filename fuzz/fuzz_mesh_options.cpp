@@ -59,7 +59,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const repose::Particle p = repose::make_particle(file, "fuzz.obj", 1.0, options);
     require(std::isfinite(p.mass.mass) && p.mass.mass > 0);
     require(p.mass.inertia.allFinite() && p.mass.principal_moments.allFinite());
-    require((p.mass.principal_moments.array() >= -1e-9 * p.mass.principal_moments.cwiseAbs().maxCoeff()).all());
+    require(
+        (p.mass.principal_moments.array() >= -1e-9 * p.mass.principal_moments.cwiseAbs().maxCoeff()).all());
     require(std::isfinite(p.length) && p.length > 0 && p.input_offset.allFinite() && !p.hull.faces.empty());
 
     const double diagonal = (p.bounds.max - p.bounds.min).norm();
