@@ -46,12 +46,12 @@ void Settler::Impl::vertices_below_among(const Quat& qq, double level, const std
 
 // Whether the band picked from the step's candidates is the one a walk finds (the sanitizer build checks
 // every such pick); the walk's scratch is left as it was.
-bool Settler::Impl::band_matches_walk(double level) {
+bool Settler::Impl::band_matches_walk(double level, const std::vector<int>& picked) {
   const std::vector<int> reachable = walk_out;
   std::vector<int> walked;
   vertices_below(q, level, walked, true);
   walk_out = reachable;
-  return walked == contact;
+  return walked == picked;
 }
 
 // Distinct hull vertex indices into increasing order. A band of hundreds is written into a bitset of the

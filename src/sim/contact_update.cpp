@@ -23,19 +23,29 @@ void Settler::Impl::update_contacts(const Vec3& omega, const Vec3& com_velocity,
   // A margin of 1e-9·L: points that reach the band together (mirror images) join together, and a point
   // sitting on the band's edge (on a rotation axis) does not flicker in and out with round-off.
   const double contact_level = band + touch_tol;
+  // Who may join: a vertex outside the set joins by entering the band (z ≤ ε, an event both integrators
+  // locate), and at that event, or when contact begins, every vertex within the margin joins with it. With
+  // no such event a vertex hovering in (ε, ε + margin] stays out: else it would join only if a step
+  // happened to end while it hovered, which made the two integrators' contact sets differ (issue 12's
+  // convergence check). Once the stability test has passed the set is the pose's own (no band events).
+  const bool joins_to_margin = !band_events() || band_entered || contact.empty();
   if (adaptive) {
     // Only the vertices near the wall: picked from the step's event candidates when they hold the band
     // (the step's first update, before any change of support), else by a walk (the lowest vertex is among
     // them). Both give the same set, in index order.
-    for (int k : contact) in_contact[k] = 0;
+    std::vector<int>& members = decision_set;
     if (band_in_candidates) {
-      vertices_below_among(q, contact_level, event_candidates, contact);
-      assert(band_matches_walk(contact_level));
+      vertices_below_among(q, contact_level, event_candidates, members);
+      assert(band_matches_walk(contact_level, members));
     } else {
-      vertices_below(q, contact_level, contact, true);
+      vertices_below(q, contact_level, members, true);
     }
     band_in_candidates = false;
     const Vec3 r3 = q.toRotationMatrix().row(2).transpose();
+    if (!joins_to_margin)
+      std::erase_if(members, [&](int k) { return !in_contact[k] && height_of(r3, k) > band; });
+    for (int k : contact) in_contact[k] = 0;
+    contact.swap(members);
     for (int k : contact) {
       z[k] = height_of(r3, k);
       in_contact[k] = 1;
@@ -44,7 +54,7 @@ void Settler::Impl::update_contacts(const Vec3& omega, const Vec3& com_velocity,
     if (!heights_known) heights(q, z);
     contact.clear();
     for (std::size_t k = 0; k < z.size(); ++k) {
-      in_contact[k] = z[k] <= contact_level;
+      in_contact[k] = z[k] <= contact_level && (joins_to_margin || in_contact[k] || z[k] <= band);
       if (in_contact[k]) contact.push_back(static_cast<int>(k));
     }
   }

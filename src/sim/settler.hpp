@@ -168,11 +168,11 @@ struct Settler::Impl {
   void heights(const Quat& qq, std::vector<double>& out) const;  // every hull vertex (contact_update.cpp)
   void vertices_below(const Quat& qq, double level, std::vector<int>& out, bool sorted);  // adaptive_step.cpp
   void vertices_below_among(const Quat& qq, double level, const std::vector<int>& among,
-                            std::vector<int>& out);  // adaptive_step.cpp
-  void sort_vertex_ids(std::vector<int>& ids);       // adaptive_step.cpp
-  bool band_matches_walk(double level);              // adaptive_step.cpp (a debug check)
-  double lowest_height();                            // adaptive_step.cpp
-  double smallest_moment() const;                    // adaptive_step.cpp
+                            std::vector<int>& out);                      // adaptive_step.cpp
+  void sort_vertex_ids(std::vector<int>& ids);                           // adaptive_step.cpp
+  bool band_matches_walk(double level, const std::vector<int>& picked);  // adaptive_step.cpp (debug check)
+  double lowest_height();                                                // adaptive_step.cpp
+  double smallest_moment() const;                                        // adaptive_step.cpp
   std::array<double, 2> rate_coefficients() const;  // |ω|² ≤ a + b·θ after turning by θ   adaptive_step.cpp
   double arc_bound(double h) const;                 // adaptive_step.cpp
   double rate_bound(double h) const;                // adaptive_step.cpp
