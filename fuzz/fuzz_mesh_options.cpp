@@ -7,7 +7,8 @@
 // and a convex hull that contains every vertex of its surface and its centre of mass (a solid's, a hull's
 // and a surface's centre of mass all lie in the hull of its points). With --repair the surface is a closed,
 // consistently wound solid by the harness's own checks (solid_checks.hpp) whose volume is the particle's
-// within round-off. With --inertia convex every point of the file lies in the hull. Anything else (another
+// within round-off. With --inertia convex, when the particle is the hull of the file's points, every one
+// of them lies in the hull. Anything else (another
 // exception, a failed check, a sanitizer report) is a crash.
 #include <algorithm>
 #include <cfloat>
@@ -65,7 +66,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
     const double diagonal = (p.bounds.max - p.bounds.min).norm();
     std::vector<repose::Vec3> points = p.mesh.vertices;
-    if (options.inertia == repose::InertiaModel::convex)  // the file's points too (body frame)
+    // With --inertia convex, when the particle is the hull of the file's points (a point cloud, or a soup
+    // that is no closed solid), every point of the file too (body frame). A closed solid keeps its own
+    // validated surface, without the vertices validation dropped (unused, or used only by a degenerate
+    // triangle): its vertices are in `points` already.
+    if (options.inertia == repose::InertiaModel::convex && p.surface_is_hull)
       for (const repose::Vec3& v : file.vertices) points.push_back(v * options.scale - p.input_offset);
     const double tol = hull_tolerance(points, diagonal);
     for (const repose::HullFace& f : p.hull.faces) {
