@@ -93,6 +93,27 @@ TEST(Convergence, AdaptiveAndSmallStepPaperSchemeAgreeDropByDrop) {
     });
 }
 
+// Drops of seed 1 of `spec` (damping ratio 0.05, as `repose poses`) settled by the adaptive integrator and by
+// the paper's fixed step at dt = dt_factor·τ: the same face and the time to rest within 1e-3 (issue 12's
+// bound: the paper's decisions lag by up to a step).
+void expect_paper_step_agrees(const char* spec, double dt_factor, const std::vector<std::uint64_t>& drops) {
+  const Particle grain = load_particle(spec, 1000.0);
+  SettleParams adaptive;
+  adaptive.damping = 0.05 * grain.mass.mass * std::sqrt(adaptive.gravity * std::pow(grain.length, 3));
+  SettleParams paper = adaptive;
+  paper.integrator = Integrator::paper;
+  paper.dt = dt_factor * std::sqrt(grain.length / paper.gravity);
+  for (std::uint64_t drop : drops) {
+    const Quat q = drop_orientation(1, drop);
+    const SettleResult a = settle(grain, adaptive, q), b = settle(grain, paper, q);
+    ASSERT_EQ(b.status, Status::rest) << spec << " drop " << drop;
+    EXPECT_EQ(a.rest_face, b.rest_face) << spec << " drop " << drop;
+    EXPECT_NEAR(a.time, b.time, 1e-3 * b.time) << spec << " drop " << drop;
+    std::printf("%s drop %d: faces %d, %d; times %.9g (adaptive), %.9g (paper)\n", spec,
+                static_cast<int>(drop), a.rest_face, b.rest_face, a.time, b.time);
+  }
+}
+
 // After the stability test has passed, the adaptive run's decisions read the contact set at each instant
 // (band crossings are not events then), and its membership must be the contact update's: within ε + the
 // touching tolerance (1e-9·L) of the wall, not ε alone. Drops 6 and 73 of seed 1 of this grain have a vertex
@@ -102,29 +123,13 @@ TEST(Convergence, AdaptiveAndSmallStepPaperSchemeAgreeDropByDrop) {
 // towards the adaptive run's 1.52136169 and 1.91053). Measured: 2.6e-6 and 4.0e-4 relative; bound 1e-3 as
 // above (the paper's decisions lag by up to a step).
 TEST(Convergence, TheDecisionsCountTheContactSetAsTheUpdateDoes) {
-  const Particle grain = load_particle("irregular:seed=3,n=5", 1000.0);
-  SettleParams adaptive;
-  adaptive.damping = 0.05 * grain.mass.mass * std::sqrt(adaptive.gravity * std::pow(grain.length, 3));
-  SettleParams paper = adaptive;
-  paper.integrator = Integrator::paper;
 #ifdef NDEBUG
-  paper.dt = 1e-5 * std::sqrt(grain.length / paper.gravity);
-  const std::vector<std::uint64_t> drops = {6, 73};
+  expect_paper_step_agrees("irregular:seed=3,n=5", 1e-5, {6, 73});
 #else
   // The sanitizer build (~200x slower): drop 6 alone, at dt = 1e-4·τ, where its paper run already agrees
   // (1.52138176 s, 1.3e-5 relative); drop 73's paper run lags by 4e-3 there.
-  paper.dt = 1e-4 * std::sqrt(grain.length / paper.gravity);
-  const std::vector<std::uint64_t> drops = {6};
+  expect_paper_step_agrees("irregular:seed=3,n=5", 1e-4, {6});
 #endif
-  for (std::uint64_t drop : drops) {
-    const Quat q = drop_orientation(1, drop);
-    const SettleResult a = settle(grain, adaptive, q), b = settle(grain, paper, q);
-    ASSERT_EQ(b.status, Status::rest) << "drop " << drop;
-    EXPECT_EQ(a.rest_face, b.rest_face) << "drop " << drop;
-    EXPECT_NEAR(a.time, b.time, 1e-3 * b.time) << "drop " << drop;
-    std::printf("drop %d: faces %d, %d; times %.9g, %.9g\n", static_cast<int>(drop), a.rest_face, b.rest_face,
-                a.time, b.time);
-  }
 }
 
 // Every contact decision of the adaptive integrator is an event located on its dense output, so its result
@@ -174,26 +179,11 @@ TEST(Convergence, ABriefPassOfTheStabilityTestIsFound) {
 // bound 1e-3, issue 12's. The sanitizer build (~200× slower) runs drop 97 at dt = 2e-4·τ, where both rules
 // agree (to 1.0e-8): a check of the same comparison, not of the rule.
 TEST(Convergence, AVertexHoveringAboveTheBandJoinsOnlyByEnteringIt) {
-  const Particle grain = load_particle("irregular:seed=1,n=4", 1000.0);
-  SettleParams adaptive;
-  adaptive.damping = 0.05 * grain.mass.mass * std::sqrt(adaptive.gravity * std::pow(grain.length, 3));
-  SettleParams paper = adaptive;
-  paper.integrator = Integrator::paper;
 #ifdef NDEBUG
-  paper.dt = 1e-5 * std::sqrt(grain.length / paper.gravity);
-  const std::vector<std::uint64_t> drops = {97, 161};
+  expect_paper_step_agrees("irregular:seed=1,n=4", 1e-5, {97, 161});
 #else
-  paper.dt = 2e-4 * std::sqrt(grain.length / paper.gravity);
-  const std::vector<std::uint64_t> drops = {97};
+  expect_paper_step_agrees("irregular:seed=1,n=4", 2e-4, {97});
 #endif
-  for (std::uint64_t drop : drops) {
-    const Quat q = drop_orientation(1, drop);
-    const SettleResult a = settle(grain, adaptive, q), b = settle(grain, paper, q);
-    ASSERT_EQ(b.status, Status::rest) << "drop " << drop;
-    EXPECT_EQ(a.rest_face, b.rest_face) << "drop " << drop;
-    EXPECT_NEAR(a.time, b.time, 1e-3 * b.time) << "drop " << drop;
-    std::printf("drop %d: times %.9g (adaptive), %.9g (paper)\n", static_cast<int>(drop), a.time, b.time);
-  }
 }
 
 // Nor on its tolerance, down to 1e-13: at the default 1e-9 the steps are placed elsewhere, so a contact
