@@ -1,0 +1,1 @@
+"""Landing frequencies of real objects against repose's predictions (scripts/experiments.py)."""
