@@ -33,7 +33,7 @@ void Settler::Impl::update_contacts(const Vec3& omega, const Vec3& com_velocity,
     // Only the vertices near the wall: picked from the step's event candidates when they hold the band
     // (the step's first update, before any change of support), else by a walk (the lowest vertex is among
     // them). Both give the same set, in index order.
-    std::vector<int>& members = decision_set;
+    std::vector<int>& members = next_contact;
     if (band_in_candidates) {
       vertices_below_among(q, contact_level, event_candidates, members);
       assert(band_matches_walk(contact_level, members));

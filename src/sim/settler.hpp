@@ -256,6 +256,7 @@ struct Settler::Impl {
 
   // ---- contacts, stability and supports (contact_update.cpp)
   void update_contacts(const Vec3& omega, const Vec3& com_velocity, bool heights_known = false);
+  std::vector<int> next_contact;  // scratch of update_contacts: the new contact set, swapped in
   void quiet_update();
   void trace_update() const;
   void set_type(ContactType new_type);
