@@ -8,6 +8,7 @@
 #include "mesh_options.hpp"
 #include "repose/io/mesh_io.hpp"
 #include "repose/model/particle.hpp"
+#include "repose/output/report.hpp"
 
 namespace repose::cli {
 
@@ -21,22 +22,6 @@ struct InfoOptions {
   bool json = false;
   std::string write_stl;
 };
-
-nlohmann::json repair_json(const RepairReport& r) {
-  return {{"merged_vertices", r.merged_vertices},
-          {"flat_components", r.flat_components},
-          {"input_components", r.input_components},
-          {"kept_components", r.kept_components},
-          {"stitched_edges", r.stitched_edges},
-          {"duplicate_faces", r.duplicate_faces},
-          {"degenerate_faces", r.degenerate_faces},
-          {"non_manifold_vertices", r.non_manifold_vertices},
-          {"flipped_faces", r.flipped_faces},
-          {"holes_filled", r.holes_filled},
-          {"area_added", r.area_added},
-          {"volume_change", r.volume_change},
-          {"notes", r.notes}};
-}
 
 nlohmann::json info_json(const Particle& p, double density, const std::string& unit) {
   const Aabb box{p.bounds.min + p.input_offset, p.bounds.max + p.input_offset};
@@ -59,13 +44,8 @@ nlohmann::json info_json(const Particle& p, double density, const std::string& u
   j["bounding_box"] = {{"min", to_json(box.min)}, {"max", to_json(box.max)}};
   j["characteristic_length"] = p.length;
   j["hull"] = {{"vertices", p.hull.vertices.size()}, {"faces", p.hull.faces.size()}};
-  j["file"] = {{"vertices", p.report.input_vertices},
-               {"triangles", p.report.input_triangles},
-               {"duplicate_vertices", p.report.welded_vertices},
-               {"degenerate_triangles", p.report.degenerate_triangles},
-               {"unused_vertices", p.report.unused_vertices},
-               {"flipped", p.report.flipped}};
-  if (p.repair) j["repair"] = repair_json(*p.repair);
+  j["file"] = nlohmann::json::parse(file_report_json(p.report));
+  if (p.repair) j["repair"] = nlohmann::json::parse(repair_report_json(*p.repair));
   j["warnings"] = p.report.warnings;
   return j;
 }

@@ -12,6 +12,7 @@
 #include "bindings.hpp"
 #include "repose/error.hpp"
 #include "repose/geometry/types.hpp"
+#include "repose/output/report.hpp"
 #include "repose/sim/settle.hpp"
 
 namespace repose::python {
@@ -91,38 +92,12 @@ py::array_t<double> points(const std::vector<Vec3>& p) {
   return out;
 }
 
-// What the file held (MeshReport) and what --repair did (RepairReport), as dicts with the keys of
-// `repose info --json`'s "file" and "repair".
-py::dict file_report(const MeshReport& r) {
-  py::dict d;
-  d["vertices"] = r.input_vertices;
-  d["triangles"] = r.input_triangles;
-  d["duplicate_vertices"] = r.welded_vertices;
-  d["degenerate_triangles"] = r.degenerate_triangles;
-  d["unused_vertices"] = r.unused_vertices;
-  d["flipped"] = r.flipped;
-  d["warnings"] = r.warnings;
-  return d;
-}
-
+// What the file held (MeshReport) and what --repair did (RepairReport): the library's JSON, as `repose info
+// --json` prints it ("file", "repair"), parsed into dicts.
+py::object json_dict(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
+py::object file_report(const MeshReport& r) { return json_dict(file_report_json(r)); }
 py::object repair_report(const std::optional<RepairReport>& repair) {
-  if (!repair) return py::none();
-  const RepairReport& r = *repair;
-  py::dict d;
-  d["merged_vertices"] = r.merged_vertices;
-  d["stitched_edges"] = r.stitched_edges;
-  d["duplicate_faces"] = r.duplicate_faces;
-  d["degenerate_faces"] = r.degenerate_faces;
-  d["non_manifold_vertices"] = r.non_manifold_vertices;
-  d["flipped_faces"] = r.flipped_faces;
-  d["holes_filled"] = r.holes_filled;
-  d["area_added"] = r.area_added;
-  d["volume_change"] = r.volume_change;
-  d["input_components"] = r.input_components;
-  d["kept_components"] = r.kept_components;
-  d["flat_components"] = r.flat_components;
-  d["notes"] = r.notes;
-  return d;
+  return repair ? json_dict(repair_report_json(*repair)) : py::none();
 }
 
 }  // namespace

@@ -161,6 +161,16 @@ def test_repair_closes_a_hole_and_reports_it():
     assert repose.Particle.from_arrays(*cube_arrays()).repair_report is None
 
 
+def test_file_and_repair_reports_equal_the_cli_info_json():
+    # One serialiser for both (output/report): the same keys and values as `repose info --repair --json`.
+    path = str(DATA / "open_cube.off")
+    expected = cli_json("info", path, "--repair")
+    p = repose.Particle.load(path, repair=True)
+    assert p.file_report == expected["file"]
+    assert p.repair_report == expected["repair"]
+    assert p.repair_report["holes_filled"] == 1
+
+
 def test_largest_component_keeps_the_bigger_of_two_cubes():
     small_v, small_f = cube_arrays(1.0)
     big_v, big_f = cube_arrays(2.0, offset=(5.0, 0.0, 0.0))

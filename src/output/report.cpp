@@ -11,6 +11,34 @@ nlohmann::json vec_json(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 nlohmann::json quat_json(const Quat& q) { return {q.w(), q.x(), q.y(), q.z()}; }
 }  // namespace
 
+std::string file_report_json(const MeshReport& r) {
+  return nlohmann::json{{"vertices", r.input_vertices},
+                        {"triangles", r.input_triangles},
+                        {"duplicate_vertices", r.welded_vertices},
+                        {"degenerate_triangles", r.degenerate_triangles},
+                        {"unused_vertices", r.unused_vertices},
+                        {"flipped", r.flipped},
+                        {"warnings", r.warnings}}
+      .dump();
+}
+
+std::string repair_report_json(const RepairReport& r) {
+  return nlohmann::json{{"merged_vertices", r.merged_vertices},
+                        {"flat_components", r.flat_components},
+                        {"input_components", r.input_components},
+                        {"kept_components", r.kept_components},
+                        {"stitched_edges", r.stitched_edges},
+                        {"duplicate_faces", r.duplicate_faces},
+                        {"degenerate_faces", r.degenerate_faces},
+                        {"non_manifold_vertices", r.non_manifold_vertices},
+                        {"flipped_faces", r.flipped_faces},
+                        {"holes_filled", r.holes_filled},
+                        {"area_added", r.area_added},
+                        {"volume_change", r.volume_change},
+                        {"notes", r.notes}}
+      .dump();
+}
+
 std::string settle_summary_json(const Particle& particle, const SettleParams& params, const Quat& initial,
                                 const SettleResult& r) {
   nlohmann::json j;
