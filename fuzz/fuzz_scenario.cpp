@@ -6,7 +6,7 @@
 // (include/repose/model/scenario.hpp): numbers bit for bit, gravity 9.81 for "si" and 981 for "cgs", the
 // orientation exactly parse_orientation of the spec, a relative mesh path resolved against "fuzz/". A field
 // stored in the wrong member, or a default that drifts, is caught. The particle is not loaded (the
-// shape-spec and mesh harnesses cover that).
+// shape-spec and mesh harnesses cover that); its mesh options are checked like the other fields.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -60,6 +60,22 @@ void require_fields_match(const repose::Scenario& s, const std::string& text) {
   require((smooth == "auto" && p.smooth == repose::SmoothMode::automatic) ||
           (smooth == "on" && p.smooth == repose::SmoothMode::on) ||
           (smooth == "off" && p.smooth == repose::SmoothMode::off));
+  // The mesh fields: the unit's factor for the run's units (mm 1e-3 m or 0.1 cm, …), else the scale.
+  const std::string mesh_units = str("mesh_units", "");
+  require(s.mesh_units == mesh_units);
+  const double per_metre = units == "cgs" ? 100.0 : 1.0;
+  const double unit_factor = mesh_units == "mm"   ? 1e-3 * per_metre
+                             : mesh_units == "cm" ? 1e-2 * per_metre
+                             : mesh_units == "m"  ? per_metre
+                                                  : 0.0254 * per_metre;
+  require(same(s.mesh.scale, mesh_units.empty() ? num("scale", 1.0) : unit_factor));
+  require(s.mesh.scale > 0 && std::isfinite(s.mesh.scale));
+  require(std::string(repose::to_string(s.mesh.inertia)) == str("inertia", "exact"));
+  require(s.mesh.repair == j.value("repair", false));
+  require(s.mesh.largest_component == j.value("largest_component", false));
+  require(s.mesh.center_of_mass.has_value() == j.contains("com"));
+  if (j.contains("com"))
+    for (int k = 0; k < 3; ++k) require(same((*s.mesh.center_of_mass)[k], j["com"][k].get<double>()));
   // Not settable from a scenario: must keep their defaults.
   require(p.max_steps == defaults.max_steps && same(p.quaternion_tolerance, defaults.quaternion_tolerance));
   require(p.max_iterations == defaults.max_iterations);

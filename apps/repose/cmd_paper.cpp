@@ -37,7 +37,7 @@ SettleRecording run_case(const PaperCase& c, const PaperOptions& o, std::deque<P
       parse_scenario(std::string(c.scenario_json), "scenarios/paper/" + std::string(c.name) + ".json");
   const std::string dir = o.out + "/" + std::string(c.name);
   ensure_output_directory(dir);
-  const Particle& particle = particles.emplace_back(load_particle(s.particle, s.density));
+  const Particle& particle = particles.emplace_back(load_particle(s.particle, s.density, s.mesh));
   std::vector<Sample> samples;
   const SettleResult r = settle(
       particle, s.params, s.orientation, [&](const Sample& x) { samples.push_back(x); },

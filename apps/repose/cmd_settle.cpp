@@ -1,6 +1,7 @@
 // repose settle MESH|SHAPE --orientation SPEC ...: one settling run, the paper's method end to end.
 #include <cmath>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -90,8 +91,9 @@ RunSetup resolve_setup(const SettleOptions& o, const CLI::App& sub) {
   auto given = [&](const char* option) { return sub.count(option) > 0; };
   RunSetup setup;
   std::string units = "si";
+  std::optional<Scenario> scenario;
   if (!o.scenario.empty()) {
-    const Scenario s = load_scenario(o.scenario);
+    const Scenario& s = scenario.emplace(load_scenario(o.scenario));
     setup.source = s.particle;
     setup.density = s.density;
     setup.orientation = s.orientation;
@@ -106,6 +108,17 @@ RunSetup resolve_setup(const SettleOptions& o, const CLI::App& sub) {
   if (given("--orientation") || o.scenario.empty()) setup.orientation = parse_orientation(o.orientation);
   if (given("--units") || o.scenario.empty()) units = o.physics.units;
   setup.mesh = o.mesh.resolve(units == "cgs");
+  if (scenario) {  // the scenario's mesh options, each one given on the command line on top
+    MeshOptions& m = setup.mesh;
+    const MeshOptions& from = scenario->mesh;
+    if (!given("--scale") && !given("--mesh-units"))
+      m.scale =
+          scenario->mesh_units.empty() ? from.scale : mesh_unit_scale(scenario->mesh_units, units == "cgs");
+    if (!given("--inertia")) m.inertia = from.inertia;
+    m.repair = m.repair || from.repair;
+    m.largest_component = m.largest_component || from.largest_component;
+    if (!given("--com")) m.center_of_mass = from.center_of_mass;
+  }
   SettleParams& p = setup.params;
   p.gravity = standard_gravity(units == "cgs" ? UnitSystem::cgs : UnitSystem::si);
   const auto take = [&](const char* option, double& field, double value) {

@@ -37,6 +37,32 @@ std::string text(const json& j, const char* key, const std::string& fallback, co
   return j[key].get<std::string>();
 }
 
+bool boolean(const json& j, const char* key, const std::string& origin) {
+  if (!j.contains(key)) return false;
+  if (!j[key].is_boolean()) throw Error(origin + ": field '" + key + "' must be true or false");
+  return j[key].get<bool>();
+}
+
+// The mesh fields: how the particle's mesh file is read (as the CLI's mesh options).
+MeshOptions mesh_options(const json& j, const Scenario& s, const std::string& origin) {
+  MeshOptions m;
+  if (j.contains("mesh_units") && j.contains("scale"))
+    throw Error(origin + ": give 'mesh_units' or 'scale', not both");
+  m.scale = number(j, "scale", 1.0, origin);
+  if (!(m.scale > 0) || !std::isfinite(m.scale))
+    throw Error(origin + ": scale must be a finite positive number");
+  try {
+    if (!s.mesh_units.empty()) m.scale = mesh_unit_scale(s.mesh_units, s.units == UnitSystem::cgs);
+    m.inertia = parse_inertia_model(text(j, "inertia", "exact", origin));
+  } catch (const Error& e) {
+    throw Error(origin + ": " + e.what());
+  }
+  m.repair = boolean(j, "repair", origin);
+  m.largest_component = boolean(j, "largest_component", origin);
+  if (j.contains("com")) m.center_of_mass = vector3(j, "com", Vec3::Zero(), origin);
+  return m;
+}
+
 }  // namespace
 
 Scenario parse_scenario(const std::string& json_text, const std::string& origin) {
@@ -49,10 +75,11 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
   }
   if (!j.is_object()) throw Error(origin + ": a scenario must be a JSON object");
   static const std::set<std::string> known = {
-      "name",        "description", "note",    "particle",          "density",        "units",
-      "orientation", "damping",     "dt",      "contact_threshold", "line_threshold", "drop_height",
-      "drop_speed",  "max_time",    "smooth",  "integrator",        "tolerance",      "velocity",
-      "spin",        "restitution", "friction"};
+      "name",        "description",       "note",     "particle",          "density",        "units",
+      "orientation", "damping",           "dt",       "contact_threshold", "line_threshold", "drop_height",
+      "drop_speed",  "max_time",          "smooth",   "integrator",        "tolerance",      "velocity",
+      "spin",        "restitution",       "friction", "mesh_units",        "scale",          "inertia",
+      "repair",      "largest_component", "com"};
   for (const auto& [key, value] : j.items())
     if (!known.count(key)) throw Error(origin + ": unknown field '" + key + "'");
   if (!j.contains("particle")) throw Error(origin + ": missing field 'particle'");
@@ -69,6 +96,10 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
   if (units != "si" && units != "cgs")
     throw Error(origin + ": units must be \"si\" or \"cgs\", got \"" + units + "\"");
   s.units = units == "cgs" ? UnitSystem::cgs : UnitSystem::si;
+  s.mesh_units = text(j, "mesh_units", "", origin);
+  if (j.contains("mesh_units") && s.mesh_units.empty())
+    throw Error(origin + ": mesh_units must be mm, cm, m or in, got \"\"");
+  s.mesh = mesh_options(j, s, origin);
   s.orientation_spec = text(j, "orientation", "identity", origin);
   try {
     s.orientation = parse_orientation(s.orientation_spec);

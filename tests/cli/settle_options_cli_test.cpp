@@ -103,6 +103,34 @@ TEST_F(SettleOptionsCli, ScenarioMeshPathIsRelativeToTheScenarioFile) {
   EXPECT_THAT(from_file["particle"]["source"].get<std::string>(), HasSubstr("cube.stl"));
 }
 
+// A scenario carries how its mesh is read (mesh_units or scale, inertia, repair, com): each run equals the
+// command with the same options, and each mesh option given on the command line replaces the file's.
+TEST_F(SettleOptionsCli, ScenarioCarriesTheMeshOptions) {
+  fs::copy_file(std::string(REPOSE_TEST_DATA) + "/cube_ascii.stl", dir_ / "cube.stl");
+  const std::string stl = shell_quote((dir_ / "cube.stl").string());
+  const auto same_run = [&](const std::string& fields, const std::string& extra, const std::string& direct) {
+    std::ofstream(dir_ / "s.json") << R"({"particle": "cube.stl", "density": 1000, )" + fields + "}";
+    json a = parse_json(
+        run_cli("settle --scenario " + shell_quote((dir_ / "s.json").string()) + " " + extra + " --json"));
+    json b = parse_json(run_cli("settle " + stl + " --density 1000 " + direct + " --json"));
+    a["particle"].erase("source");
+    b["particle"].erase("source");
+    EXPECT_EQ(a.dump(), b.dump()) << fields << " | " << extra;
+    return a;
+  };
+  const json plain = parse_json(run_cli("settle " + stl + " --density 1000 --json"));
+  const double volume = plain["particle"]["volume"].get<double>();
+  const json mm = same_run(R"("mesh_units": "mm")", "", "--mesh-units mm");
+  EXPECT_NEAR(mm["particle"]["volume"].get<double>(), 1e-9 * volume, 1e-12 * 1e-9 * volume);
+  same_run(R"("mesh_units": "mm", "units": "cgs")", "", "--mesh-units mm --units cgs");  // 0.1 cm per mm
+  same_run(R"("scale": 2)", "", "--scale 2");
+  same_run(R"("mesh_units": "mm")", "--scale 2", "--scale 2");  // the command line's scale replaces the unit
+  same_run(R"("inertia": "shell", "repair": true)", "", "--inertia shell --repair");
+  same_run(R"("inertia": "shell")", "--inertia convex", "--inertia convex");
+  same_run(R"("com": [0.4, 0.5, 0.5])", "", "--com 0.4,0.5,0.5");
+  same_run(R"("com": [0.4, 0.5, 0.5])", "--com 0.5,0.5,0.6", "--com 0.5,0.5,0.6");
+}
+
 // ---------------------------------------------------------------------------------------------------------
 // --drop-speed
 

@@ -9,6 +9,8 @@
 #include <repose/model/scenario.hpp>
 #include <repose/sim/settle.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "../support/equilibrium_oracle.hpp"
 
@@ -158,6 +160,47 @@ TEST(ScenarioFile, ReadsATossAndRejectsMalformedVectors) {
     ADD_FAILURE();
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("restitution"), std::string::npos);
+  }
+}
+
+// How the mesh is read is a scenario field too; absent, the library's defaults (a closed solid as it is).
+TEST(ScenarioFile, ReadsTheMeshOptionsAndRejectsBadOnes) {
+  EXPECT_EQ(parse_scenario(R"({"particle": "box:x=1,y=1,z=1"})", "d.json").mesh, MeshOptions{});
+  const Scenario s = parse_scenario(
+      R"({"particle": "grain.stl", "mesh_units": "mm", "inertia": "shell", "repair": true, "com": [1, 2, 3]})",
+      "s.json");
+  EXPECT_EQ(s.mesh_units, "mm");
+  EXPECT_EQ(s.mesh.scale, 1e-3);
+  EXPECT_EQ(s.mesh.inertia, InertiaModel::shell);
+  EXPECT_TRUE(s.mesh.repair);
+  EXPECT_FALSE(s.mesh.largest_component);
+  EXPECT_TRUE(
+      parse_scenario(R"({"particle": "g.stl", "largest_component": true})", "c.json").mesh.largest_component);
+  EXPECT_EQ(s.mesh.center_of_mass, Vec3(1, 2, 3));
+  // In cgs a millimetre is 0.1 of the run's length unit; an inch 2.54.
+  EXPECT_EQ(
+      parse_scenario(R"({"particle": "g.stl", "units": "cgs", "mesh_units": "mm"})", "c.json").mesh.scale,
+      0.1);
+  EXPECT_EQ(
+      parse_scenario(R"({"particle": "g.stl", "units": "cgs", "mesh_units": "in"})", "c.json").mesh.scale,
+      2.54);
+  EXPECT_EQ(parse_scenario(R"({"particle": "g.stl", "scale": 0.25})", "c.json").mesh.scale, 0.25);
+  for (const auto& [bad, names] : std::vector<std::pair<const char*, const char*>>{
+           {R"({"particle": "g.stl", "mesh_units": "mm", "scale": 2})", "not both"},
+           {R"({"particle": "g.stl", "mesh_units": "furlong"})", "mm, cm, m or in"},
+           {R"({"particle": "g.stl", "mesh_units": ""})", "mesh_units"},
+           {R"({"particle": "g.stl", "scale": -1})", "scale"},
+           {R"({"particle": "g.stl", "scale": "2"})", "scale"},
+           {R"({"particle": "g.stl", "inertia": "hollow"})", "exact, convex or shell"},
+           {R"({"particle": "g.stl", "repair": "yes"})", "true or false"},
+           {R"({"particle": "g.stl", "com": [1, 2]})", "array of three numbers"}}) {
+    try {
+      parse_scenario(bad, "m.json");
+      ADD_FAILURE() << bad;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(names), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).rfind("m.json: ", 0), 0u) << e.what();
+    }
   }
 }
 

@@ -12,6 +12,11 @@
 //   friction                 numbers, as SettleParams (friction absent: no slip)
 //   velocity, spin           [x, y, z], as SettleParams (a toss)
 //   smooth                   "auto" | "on" | "off"
+//   mesh_units | scale       the mesh file's length unit ("mm" | "cm" | "m" | "in", converted to the run's
+//                            units) or a factor on every coordinate (default 1); not both
+//   inertia                  "exact" | "convex" | "shell" (default "exact")
+//   repair, largest_component  booleans (default false)
+//   com                      [x, y, z]: the centre of mass in the mesh file's coordinates, when known
 //   note                     free text: why this input was chosen (shown in the reproduction report)
 #pragma once
 
@@ -19,6 +24,7 @@
 
 #include "repose/geometry/types.hpp"
 #include "repose/model/params.hpp"
+#include "repose/model/particle.hpp"
 
 namespace repose {
 
@@ -32,6 +38,9 @@ struct Scenario {
   std::string orientation_spec = "identity";
   Quat orientation = Quat::Identity();
   SettleParams params;  ///< gravity set from `units`
+  /// How the mesh file becomes a particle; with `mesh_units`, mesh.scale is its factor for `units`.
+  MeshOptions mesh;
+  std::string mesh_units;  ///< "mm", "cm", "m" or "in"; empty: mesh.scale is the file's "scale"
 };
 
 /// Parses scenario JSON text; `origin` names it in errors and its directory resolves relative mesh paths.
