@@ -5,6 +5,8 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <tuple>
+#include <utility>
 
 #include "settler.hpp"
 
@@ -118,11 +120,44 @@ double Settler::Impl::locate_touch(double a, double b) {
   const Mat3 R0 = q.toRotationMatrix();
   const double spin_momentum = (R0 * body.inertia * R0.transpose() * flight_omega).norm();
   const double accel = params.gravity + 2 * hull_radius * spin_momentum * spin_momentum / (i_min * i_min);
-  // The heights and vertical speeds of the vertices at an instant: recomputed from the instant when needed,
-  // not kept with the intervals still to examine (a wide search keeps thousands of intervals: with their
-  // samples, gigabytes for a 10,000-vertex hull). The last few are cached, since the earliest-first order
-  // examines an interval right after its parent, whose ends it shares.
-  const std::size_t n = verts.size();
+  // The centre of mass's height and vertical speed at instant s (its parabola), and a vertex's on top of
+  // them.
+  const auto centre = [&](double s) {
+    const double tau = s - fall_t0;
+    return std::pair{fall_origin.z() + fall_velocity.z() * tau - 0.5 * params.gravity * tau * tau,
+                     fall_velocity.z() - params.gravity * tau};
+  };
+  const auto vertex = [&](const sim::Rotation& st, std::pair<double, double> c, std::size_t k) {
+    const Vec3 r = st.q * verts[k];
+    return std::pair{c.first + r.z(), c.second + st.omega.cross(r).z()};
+  };
+  // Whether a vertex at heights zl, zr ≥ 0 (round-off clamped) and speeds vl, vr at tl, tr stays above the
+  // wall in between, by the bound A.
+  const auto vertex_clear = [&](double tl, double zl, double vl, double tr, double zr, double vr) {
+    zl = std::max(zl, 0.0);
+    zr = std::max(zr, 0.0);
+    const double after = (vl + std::sqrt(vl * vl + 2 * accel * zl)) / accel;
+    const double before = (-vr + std::sqrt(vr * vr + 2 * accel * zr)) / accel;
+    return after + before >= tr - tl;
+  };
+  // The vertices that may reach the wall in (a, b]: every other one stays above it over the whole step by the
+  // bound, hence over each part of it, so the search looks at these only (a body rolling on its rim has a
+  // handful near the wall among hundreds).
+  touch_candidates.clear();
+  {
+    const sim::Rotation sa = flight_rotation->state_at(a), sb = flight_rotation->state_at(b);
+    const auto ca = centre(a), cb = centre(b);
+    for (std::size_t k = 0; k < verts.size(); ++k) {
+      const auto [za, va] = vertex(sa, ca, k);
+      const auto [zb, vb] = vertex(sb, cb, k);
+      if (zb < 0 || !vertex_clear(a, za, va, b, zb, vb)) touch_candidates.push_back(k);
+    }
+  }
+  if (touch_candidates.empty()) return INFINITY;
+  // The candidates' heights and vertical speeds at an instant: recomputed from the instant when needed, not
+  // kept with the intervals still to examine (a wide search keeps thousands of intervals). The last few are
+  // cached, since the earliest-first order examines an interval right after its parent, whose ends it shares.
+  const std::size_t n = touch_candidates.size();
   touch_samples.resize(kTouchCached * 2 * n);
   touch_sample_time.fill(NAN);  // a sample describes this flight step only
   // Slots are written in turn, so the two ends an iteration reads and the midpoint it then computes never
@@ -135,26 +170,15 @@ double Settler::Impl::locate_touch(double a, double b) {
     const std::size_t slot = cursor++ % kTouchCached;
     double* out = &touch_samples[slot * 2 * n];
     const sim::Rotation st = flight_rotation->state_at(s);
-    const double tau = s - fall_t0;
-    const double zc = fall_origin.z() + fall_velocity.z() * tau - 0.5 * params.gravity * tau * tau;
-    const double vc = fall_velocity.z() - params.gravity * tau;
-    for (std::size_t k = 0; k < n; ++k) {
-      const Vec3 r = st.q * verts[k];
-      out[k] = zc + r.z();
-      out[n + k] = vc + st.omega.cross(r).z();
-    }
+    const auto c = centre(s);
+    for (std::size_t i = 0; i < n; ++i) std::tie(out[i], out[n + i]) = vertex(st, c, touch_candidates[i]);
     touch_sample_time[slot] = s;
     return out;
   };
   const auto below = [&](const double* z) { return *std::min_element(z, z + n) < 0; };
   const auto clear = [&](double tl, const double* l, double tr, const double* r) {
-    for (std::size_t k = 0; k < n; ++k) {
-      const double zl = std::max(l[k], 0.0), zr = std::max(r[k], 0.0);
-      const double vl = l[n + k], vr = r[n + k];
-      const double after = (vl + std::sqrt(vl * vl + 2 * accel * zl)) / accel;
-      const double before = (-vr + std::sqrt(vr * vr + 2 * accel * zr)) / accel;
-      if (after + before < tr - tl) return false;
-    }
+    for (std::size_t k = 0; k < n; ++k)
+      if (!vertex_clear(tl, l[k], l[n + k], tr, r[k], r[n + k])) return false;
     return true;
   };
   const double resolution = (b - a) * std::ldexp(1.0, -kTouchBisections);

@@ -100,7 +100,8 @@ struct Settler::Impl {
   // grow and shrink by megabytes a drop): the intervals to examine and a few cached samples.
   static constexpr std::size_t kTouchCached = 4;
   std::vector<std::pair<double, double>> touch_stack;
-  std::vector<double> touch_samples;  // kTouchCached slots of 2·N: heights, then vertical speeds
+  std::vector<std::size_t> touch_candidates;  // the hull vertices that may reach the wall in the step
+  std::vector<double> touch_samples;  // kTouchCached slots of 2·(candidates): heights, then vertical speeds
   std::array<double, kTouchCached> touch_sample_time{};
   bool rigid_impacts = false;  // uses_impacts(params): touches while airborne are impacts
   sim::ImpactLaw impact_law;
