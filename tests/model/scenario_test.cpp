@@ -190,6 +190,7 @@ TEST(ScenarioFile, ReadsTheMeshOptionsAndRejectsBadOnes) {
            {R"({"particle": "g.stl", "mesh_units": "furlong"})", "mm, cm, m or in"},
            {R"({"particle": "g.stl", "mesh_units": ""})", "mesh_units"},
            {R"({"particle": "g.stl", "scale": -1})", "scale"},
+           {R"({"particle": "g.stl", "scale": 0})", "scale"},
            {R"({"particle": "g.stl", "scale": "2"})", "scale"},
            {R"({"particle": "g.stl", "inertia": "hollow"})", "exact, convex or shell"},
            {R"({"particle": "g.stl", "repair": "yes"})", "true or false"},
