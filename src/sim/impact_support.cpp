@@ -4,12 +4,13 @@
 #include <cmath>
 
 #include "stability.hpp"
+#include "tolerances.hpp"
 
 namespace repose::sim {
 
 namespace {
 
-Vec3 momentum_about(const Impact& impact, const Support& next) {
+Vec3 momentum_about(const SwitchState& impact, const Support& next) {
   return momentum_after_switch(impact.body, impact.q, impact.com, impact.omega, impact.com_velocity, next);
 }
 
@@ -44,7 +45,7 @@ SupportChoice line_support(const Touch& t, Vec3 axis) {
   return c;
 }
 
-bool others_separate(const Impact& impact, const std::vector<Touch>& touching, const Support& next) {
+bool others_separate(const SwitchState& impact, const std::vector<Touch>& touching, const Support& next) {
   const Body& body = impact.body;
   const Vec3 w = omega_from_momentum(body, next, impact.q, momentum_about(impact, next));
   const Mat3 inertia = inertia_about_support(body, next, impact.q);
@@ -53,8 +54,8 @@ bool others_separate(const Impact& impact, const std::vector<Touch>& touching, c
   // vanishes for a rotation about a fixed axis).
   const Vec3 alpha = next.line ? Vec3(m.dot(next.axis) / next.axis.dot(inertia * next.axis) * next.axis)
                                : Vec3(inertia.ldlt().solve(m - w.cross(inertia * w)));
-  const double v_tol = 1e-9 * std::sqrt(body.gravity * impact.length);
-  const double a_tol = 1e-9 * body.gravity;
+  const double v_tol = tol::kSpeed * std::sqrt(body.gravity * impact.length);
+  const double a_tol = tol::kAccel * body.gravity;
   for (const Touch& t : touching) {
     Vec3 r = t.world - next.world;
     if (next.line) r -= r.dot(next.axis) * next.axis;
@@ -64,12 +65,12 @@ bool others_separate(const Impact& impact, const std::vector<Touch>& touching, c
     if (vz < -v_tol || (vz <= v_tol && az < -a_tol)) return false;
     // Rising, but pulled back within a tenth of a step: it would be on the wall again at once (a ping-pong
     // of near-empty steps), so it does not count as separating.
-    if (az < -a_tol && 2 * vz / -az < 0.1 * impact.dt) return false;
+    if (az < -a_tol && 2 * vz / -az < tol::kPullBackFraction * impact.dt) return false;
   }
   return true;
 }
 
-SupportChoice choose_from_touching(const Impact& impact, const std::vector<Touch>& touching, const Vec2& g) {
+SupportChoice choose_from_touching(const SwitchState& impact, const std::vector<Touch>& touching, const Vec2& g) {
   const std::vector<Vec2> poly = touching_polygon(touching, impact.touch_tol);
   const ClosestFeature nearest = closest_feature(poly, g);
   std::vector<ClosestFeature> candidates = {nearest};
@@ -92,7 +93,7 @@ SupportChoice choose_from_touching(const Impact& impact, const std::vector<Touch
   // points are struck together, plastically (the paper's touch, E = 0), and the motion stops. Keeping it
   // instead (the nearest edge with its momentum) drove the third point into the wall at once, step after
   // step, without end (a tossed kitten d3 die, docs/experiments.md).
-  Impact still = impact;
+  SwitchState still = impact;
   still.omega = Vec3::Zero();
   still.com_velocity = Vec3::Zero();
   SupportChoice c = make(nearest.j >= 0 || n < 2 ? nearest : ClosestFeature{nearest.i, (nearest.i + 1) % n});
@@ -105,7 +106,7 @@ SupportChoice choose_from_touching(const Impact& impact, const std::vector<Touch
   return c;
 }
 
-SupportChoice choose_smooth(const Impact& impact, const std::vector<Touch>& touching, const Touch& current,
+SupportChoice choose_smooth(const SwitchState& impact, const std::vector<Touch>& touching, const Touch& current,
                             const Vec2& g) {
   const Touch* lowest = &current;
   double deepest = INFINITY;

@@ -20,7 +20,7 @@ struct Touch {
 };
 
 /// The particle just before the impact, and the scales the tolerances are relative to.
-struct Impact {
+struct SwitchState {
   const Body& body;
   Quat q;
   Vec3 com;
@@ -50,20 +50,20 @@ SupportChoice line_support(const Touch& t, Vec3 axis);
 /// Whether, rotating about `next` right after the impact (angular momentum about it conserved), every other
 /// touching point moves up, or at zero speed is accelerated up by gravity, and is not pulled back within a
 /// tenth of a step.
-bool others_separate(const Impact& impact, const std::vector<Touch>& touching, const Support& next);
+bool others_separate(const SwitchState& impact, const std::vector<Touch>& touching, const Support& next);
 
 /// Several points on the wall, centre of mass's projection `g`: the feature of their polygon nearest `g`,
 /// unless that would drive another touching point into the wall; then the first feature (edges in polygon
 /// order, then corners) that lets every other point separate. Failing that, the motion stops (`stop`) and
 /// the same search is made from rest, where gravity alone decides; failing that too (the centre of mass over
 /// the polygon), the nearest edge from rest, which keeps both its ends on the wall.
-SupportChoice choose_from_touching(const Impact& impact, const std::vector<Touch>& touching, const Vec2& g);
+SupportChoice choose_from_touching(const SwitchState& impact, const std::vector<Touch>& touching, const Vec2& g);
 
 /// A smooth particle turns about its single lowest point: the lowest touching point other than the current
 /// support's vertex `current` (the most recent touch; of equal heights the first listed), else that vertex;
 /// if that would drive another touching point into the wall (rocking on an edge of the discretised surface),
 /// as choose_from_touching.
-SupportChoice choose_smooth(const Impact& impact, const std::vector<Touch>& touching, const Touch& current,
+SupportChoice choose_smooth(const SwitchState& impact, const std::vector<Touch>& touching, const Touch& current,
                             const Vec2& g);
 
 }  // namespace repose::sim

@@ -3,6 +3,9 @@
 
 #include <algorithm>
 
+#include "events.hpp"
+#include "tolerances.hpp"
+
 namespace repose::sim {
 
 namespace {
@@ -13,10 +16,7 @@ constexpr int kMaxSteps = 100000;
 // impulse keep RK4's error far below round-off of the energy (the direction is constant in planar impacts,
 // where every step is exact).
 constexpr int kStepsPerImpulse = 256;
-constexpr int kResumeBisections = 200;
-// A step that should end the sliding is taken as ending it if the tangential speed left is below this
-// fraction of the speed at the step's start (the linear prediction is exact when the direction is fixed).
-constexpr double kStopFraction = 1e-9;
+constexpr int kResumeHalvings = 200;  // c is bracketed to round-off long before
 constexpr int kMaxSweeps = 10000;  // Gauss–Seidel sweeps of impulse_centre
 
 Mat3 skew(const Vec3& a) {
@@ -29,12 +29,11 @@ Mat3 skew(const Vec3& a) {
 // tangential velocity's rate K_tn − μ·K_tt·ŝ must be c·ŝ with c > 0, so ŝ = (μ·K_tt + c)⁻¹ K_tn with |ŝ| = 1;
 // |ŝ(c)| falls from |K_tt⁻¹ K_tn|/μ > 1 at c = 0 to at most 1 at c = |K_tn|.
 Vec2 resume_direction(const Eigen::Matrix2d& ktt, const Vec2& ktn, double mu) {
-  double lo = 0, hi = ktn.norm();
   auto s = [&](double c) { return Vec2((mu * ktt + c * Eigen::Matrix2d::Identity()).inverse() * ktn); };
-  for (int i = 0; i < kResumeBisections && hi - lo > 0; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (s(mid).norm() > 1 ? lo : hi) = mid;
-  }
+  EventSearch search;
+  search.max_halvings = kResumeHalvings;
+  search.hi_holds_known = true;
+  const double hi = locate(0.0, ktn.norm(), search, [&](double c) { return !(s(c).norm() > 1); }, monotone).hi;
   return s(hi).normalized();
 }
 
@@ -65,7 +64,7 @@ ImpactOutcome collide(double mass, const Mat3& inertia, const Vec3& r, const Mot
   const Vec2 stuck_rate = -ktt.ldlt().solve(ktn);  // dP_t/dp that keeps a stuck point stuck
   const double e = law.restitution, mu = law.friction;
   const double p_scale = -u0.z() / K(2, 2);  // the frictionless compression impulse
-  const double u_tiny = 1e-14 * u0.norm();   // speeds below this are zero (round-off of u0)
+  const double u_tiny = tol::kTinySpeed * u0.norm();   // speeds below this are zero (round-off of u0)
 
   auto velocity = [&](const Vec3& P) { return Vec3(u0 + K * P); };
   Vec3 P = Vec3::Zero();
@@ -168,7 +167,7 @@ ImpactOutcome collide(double mass, const Mat3& inertia, const Vec3& r, const Mot
       case stops:
         // Stopped, up to the turning of the direction within the step: a remainder at round-off level is
         // removed (within the cone: it is that small); a larger one is slid out by the next steps.
-        if (velocity(P).head<2>().norm() <= kStopFraction * slide) {
+        if (velocity(P).head<2>().norm() <= tol::kStopFraction * slide) {
           P.head<2>() -= ktt.ldlt().solve(velocity(P).head<2>());
           resumed = false;
         }
@@ -177,7 +176,7 @@ ImpactOutcome collide(double mass, const Mat3& inertia, const Vec3& r, const Mot
         if (velocity(P).z() >= -u_tiny) end_compression();
         break;
       case finished:
-        done = work >= target - 1e-15 * std::abs(target) || velocity(P).z() > 0;
+        done = work >= target - tol::kEnergyMet * std::abs(target) || velocity(P).z() > 0;
         break;
       case none:
         break;
@@ -217,7 +216,7 @@ std::optional<Vec3> impulse_centre(double mass, const Mat3& inertia, const std::
       change = std::max(change, std::abs(xi - x[i]) / mass);
       x[i] = xi;
     }
-    if (change <= 1e-16 * scale) break;
+    if (change <= tol::kSweepChange * scale) break;
   }
   double total = 0;
   Vec3 centre = Vec3::Zero();

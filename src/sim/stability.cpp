@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "tolerances.hpp"
+
 namespace repose::sim {
 
 bool ray_hits_triangle(const Vec3& origin, const Vec3& dir, const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -11,15 +13,15 @@ bool ray_hits_triangle(const Vec3& origin, const Vec3& dir, const Vec3& a, const
   const Vec3 e2 = c - a;
   const Vec3 p = dir.cross(e2);
   const double det = e1.dot(p);
-  if (std::abs(det) <= 1e-300) return false;  // ray parallel to the triangle's plane
+  if (std::abs(det) <= tol::kParallel) return false;  // ray parallel to the triangle's plane
   const double inv = 1.0 / det;
   const Vec3 s = origin - a;
   const double u = s.dot(p) * inv;
   const Vec3 q = s.cross(e1);
   const double v = dir.dot(q) * inv;
   const double t = e2.dot(q) * inv;
-  const double tol = 1e-12;
-  return u >= -tol && v >= -tol && u + v <= 1 + tol && t > 0;
+  const double edge = tol::kRayEdge;
+  return u >= -edge && v >= -edge && u + v <= 1 + edge && t > 0;
 }
 
 namespace {

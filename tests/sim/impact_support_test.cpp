@@ -50,7 +50,7 @@ TEST(ImpactSupport, AFarSideEdgeIsChosenWhenTheNearestEdgeAndTheFirstEdgeWouldDr
   // So the support is the line BC, through B.
   const Body body = test_body();
   const Vec3 com(-0.2, 1, 1);
-  const Impact impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3(2, 0.5, -1), 1.0, 1e-9, 1e-6};
+  const SwitchState impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3(2, 0.5, -1), 1.0, 1e-9, 1e-6};
   const std::vector<Touch> touching = triangle_abc(com, 10);
   Support about_ca{touching[2].world, touching[2].body, true, Vec3(0, -1, 0)};
   Support about_ab{touching[0].world, touching[0].body, true, Vec3(1, 0, 0)};
@@ -72,7 +72,7 @@ TEST(ImpactSupport, FromRestTheNearestFeatureLetsTheOthersLiftOff) {
   // (G − B)·(A − B) = −2 < 0, (G − B)·(C − B) = −1 < 0), so the particle tips about B alone and A and C rise.
   const Body body = test_body();
   const Vec3 com(3, 0.5, 1);
-  const Impact impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3::Zero(), 1.0, 1e-9, 1e-6};
+  const SwitchState impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3::Zero(), 1.0, 1e-9, 1e-6};
   const std::vector<Touch> touching = triangle_abc(com);
   const SupportChoice c = choose_from_touching(impact, touching, Vec2(com.x(), com.y()));
   EXPECT_EQ(c.vertex, 1);
@@ -89,7 +89,7 @@ TEST(ImpactSupport, WhenNoFeatureLetsTheOthersLiftTheNearestEdgeKeepsTwoPointsOn
   // is the edge nearest G: CA (distance 0.5; AB is 0.6, BC |0.5 + 0.6 − 2|/√2 = 0.64), along y.
   const Body body = test_body();
   const Vec3 com(0.5, 0.6, 1);
-  const Impact impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3::Zero(), 1.0, 1e-9, 1e-6};
+  const SwitchState impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3::Zero(), 1.0, 1e-9, 1e-6};
   const std::vector<Touch> touching = triangle_abc(com);
   for (const Touch& p : touching) EXPECT_FALSE(others_separate(impact, touching, Support{p.world, p.body}));
   EXPECT_FALSE(
@@ -121,7 +121,7 @@ TEST(ImpactSupport, WhenNoFeatureLetsTheOthersLiftTheMotionStopsAndGravityChoose
   // drove C into the wall at once, step after step: a tossed die that never came to rest.)
   const Body body = test_body();
   const Vec3 com(-0.5, -0.5, 1);
-  const Impact impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3(1, 1, -1), 1.0, 1e-9, 1e-6};
+  const SwitchState impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3(1, 1, -1), 1.0, 1e-9, 1e-6};
   const std::vector<Touch> touching = triangle_abc(com);
   for (const Touch& p : touching) EXPECT_FALSE(others_separate(impact, touching, Support{p.world, p.body}));
   EXPECT_FALSE(
@@ -134,7 +134,7 @@ TEST(ImpactSupport, WhenNoFeatureLetsTheOthersLiftTheMotionStopsAndGravityChoose
   EXPECT_TRUE(c.stop);
   EXPECT_EQ(c.vertex, 0);
   EXPECT_FALSE(c.support.line);
-  Impact still = impact;
+  SwitchState still = impact;
   still.com_velocity = Vec3::Zero();
   EXPECT_TRUE(others_separate(still, touching, c.support));
 }
@@ -154,7 +154,7 @@ TEST(ImpactSupport, APointRisingSlowerThanTheVelocityToleranceOrPulledBackAtOnce
   const double g = body.gravity, a_z = -0.5 * g / 1.35;
   auto separates = [&](double v_z, double dt, double length = 1.0) {
     const Vec3 spin(1.35 * v_z / 0.1, 0, 0);
-    const Impact impact{body, Quat::Identity(), com, spin, Vec3::Zero(), length, 1e-9, dt};
+    const SwitchState impact{body, Quat::Identity(), com, spin, Vec3::Zero(), length, 1e-9, dt};
     return others_separate(impact, {p, t}, hinge);
   };
   const double slow = 1e-7 * std::sqrt(g);   // 100× the velocity tolerance
@@ -179,7 +179,7 @@ TEST(ImpactSupport, ASmoothParticlePivotsOnItsLowestNewTouch) {
   // (−1, 0) gives +2.4: A would be driven into the wall.)
   const Body body = test_body();
   const Vec3 com(0.6, 0.6, 1);
-  const Impact impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3(-2, -2, -1), 1.0, 1e-9, 1e-6};
+  const SwitchState impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3(-2, -2, -1), 1.0, 1e-9, 1e-6};
   const Touch current = touch(5, 0, 1, 0, com);
   const std::vector<Touch> touching = {current, touch(6, 0, 0, -2e-12, com), touch(7, 1, 0, -1e-12, com)};
   const SupportChoice c = choose_smooth(impact, touching, current, Vec2(com.x(), com.y()));

@@ -18,6 +18,10 @@
 
 namespace repose {
 
+namespace sim {
+class Engine;  // the state machine over a run's phases (src/sim/engine.hpp)
+}
+
 /// The contact type of section 2.2 (Algorithm 1), from the points within ε of the wall; `free_fall` is the
 /// first descent without rotation, `flight` any other time off the wall (a toss with spin, a rebound).
 enum class ContactType { free_fall, point, line, surface, flight };
@@ -122,12 +126,8 @@ class Settler {
   Status status() const;
   SettleResult result() const;  ///< the summary so far (final once status() != running)
 
-  /// The engine's per-run state, defined internally (src/sim/settler.hpp); named here only so that the
-  /// engine's white-box tests can build one.
-  struct Impl;
-
  private:
-  std::unique_ptr<Impl> impl_;
+  std::unique_ptr<sim::Engine> engine_;
 };
 
 /// The time between the samples of a written time series unless the user sets one: 0 (every step) with the

@@ -1,0 +1,148 @@
+// The engine's transitions (engine.hpp): every change of phase happens here.
+#include "engine.hpp"
+
+namespace repose::sim {
+
+namespace {
+template <class... F>
+struct Overloaded : F... {
+  using F::operator()...;
+};
+}  // namespace
+
+Engine::Engine(const Particle& particle, const SettleParams& params, const Quat& orientation)
+    : run_(particle, params, orientation), phase_(std::in_place_type<Stopped>) {
+  // start → flight: dropped from a height, or tossed; start → contact: on the wall at t = 0.
+  const SettleParams& p = run_.params;
+  const Vec3 velocity = p.velocity - Vec3(0, 0, p.drop_speed);
+  if (p.drop_height > 0 || p.velocity != Vec3::Zero() || p.spin != Vec3::Zero())
+    start_flight(velocity, p.spin, p.drop_height);
+  else
+    start_contact(Vec3(0, 0, -p.drop_speed), Vec3::Zero(), false);
+}
+
+// The transition table. Each phase's step reports the event that ends it, if any:
+//   flight  ─ touch ─▶ contact   the paper's touch (§2.1): translation stops, the rotation starts from rest
+//   flight  ─ touch ─▶ impact    rigid impacts (a toss, or E > 0; uses_impacts): resolved at once, then
+//     impact ─▶ flight            every point on the wall leaves it (a rebound)
+//     impact ─▶ contact           otherwise: the hand-over, with the angular momentum the impacts left
+//   contact ─ rest ─▶ rest       the touching points hold the centre of mass over a stable hull face
+//   flight, contact ─ limit ─▶ stopped   at the time limit or the step limit, before the next step
+// (Inside the contact phase the support switches, and an edge balance is tipped off, without a transition.)
+bool Engine::step() {
+  if (status() != Status::running) return false;
+  if (run_.t >= run_.tol.max_time) {
+    stop(Status::max_time);
+  } else if (run_.steps >= run_.params.max_steps) {
+    stop(Status::max_steps);
+  } else if (auto* flight = std::get_if<Flight>(&phase_)) {
+    if (const auto touch = flight->step()) {
+      if (!uses_impacts(run_.params)) {
+        start_contact(touch->velocity, Vec3::Zero(), false);
+      } else {
+        const Impact::Outcome out = Impact(run_).resolve({touch->velocity, touch->omega});
+        if (out.rebound)
+          start_flight(out.motion.velocity, out.motion.omega, 0.0);
+        else
+          start_contact(out.motion.velocity, out.motion.omega, true);
+      }
+    }
+  } else if (auto* contact = std::get_if<Contact>(&phase_)) {
+    if (auto rest = contact->step()) {
+      const int count = contact->contact_count();
+      phase_.emplace<Rest>(Rest{std::move(*rest), count});
+    }
+  }
+  if (!run_.record.phases.empty()) run_.record.phases.back().t1 = run_.t;
+  return status() == Status::running;
+}
+
+void Engine::start_flight(const Vec3& velocity, const Vec3& omega, double height) {
+  phase_.emplace<Flight>(run_, velocity, omega, height);
+}
+
+void Engine::start_contact(const Vec3& com_velocity, const Vec3& omega, bool carry) {
+  Contact& contact = phase_.emplace<Contact>(run_);
+  if (auto rest = contact.begin(com_velocity, omega, carry)) {
+    const int count = contact.contact_count();
+    phase_.emplace<Rest>(Rest{std::move(*rest), count});
+  }
+}
+
+void Engine::stop(Status why) {
+  Stopped stopped{why, sample().omega, sample().contact_count, kinetic_energy()};
+  phase_.emplace<Stopped>(stopped);
+}
+
+bool Engine::advance_to(double time) {
+  run_.limit = time;
+  while (status() == Status::running && run_.t < time) step();
+  run_.limit = INFINITY;
+  return status() == Status::running;
+}
+
+Status Engine::status() const {
+  return std::visit(Overloaded{[](const Rest&) { return Status::rest; },
+                               [](const Stopped& s) { return s.why; },
+                               [](const auto&) { return Status::running; }},
+                    phase_);
+}
+
+double Engine::kinetic_energy() const {
+  return std::visit(Overloaded{[](const Flight& f) { return f.kinetic_energy(); },
+                               [](const Contact& c) { return c.kinetic_energy(); },
+                               [](const Rest&) { return 0.0; },
+                               [](const Stopped& s) { return s.kinetic_energy; }},
+                    phase_);
+}
+
+Sample Engine::sample() const {
+  Sample s;
+  s.t = run_.t;
+  s.orientation = run_.q;
+  s.com = run_.com;
+  s.contact = run_.record.type();
+  std::visit(Overloaded{[&](const Flight& f) { s.omega = f.omega(); },
+                        [&](const Contact& c) {
+                          s.omega = c.omega();
+                          s.contact_count = c.contact_count();
+                        },
+                        [&](const Rest& r) { s.contact_count = r.contact_count; },
+                        [&](const Stopped& st) {
+                          s.omega = st.omega;
+                          s.contact_count = st.contact_count;
+                        }},
+             phase_);
+  s.kinetic_energy = kinetic_energy();
+  s.potential_energy = run_.potential_energy();
+  return s;
+}
+
+SettleResult Engine::result() const {
+  const Recorder& rec = run_.record;
+  SettleResult r;
+  r.status = status();
+  r.time = run_.t;
+  r.stable_time = rec.stable_time;
+  r.steps = run_.steps;
+  r.max_penetration = rec.max_penetration;
+  r.orientation = run_.q;
+  r.com = run_.com;
+  if (const Rest* rest = std::get_if<Rest>(&phase_)) {
+    r.rest = rest->pose.kind;
+    r.rest_face = rest->pose.face;
+    r.contact_points = rest->pose.points;
+  }
+  r.down_normal_body = run_.q.conjugate() * Vec3(0, 0, -1);
+  r.phases = rec.phases;
+  r.impacts = rec.impacts;
+  r.bounces = rec.bounces;
+  r.energy_start = rec.energy_start;
+  r.energy_end = kinetic_energy() + run_.potential_energy();
+  r.smooth = run_.smooth;
+  r.dt = run_.tol.dt;
+  r.unconverged_steps = rec.unconverged;
+  return r;
+}
+
+}  // namespace repose::sim

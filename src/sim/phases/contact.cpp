@@ -1,0 +1,54 @@
+// The contact phase's start and step (contact.hpp).
+#include "contact.hpp"
+
+#include <utility>
+
+namespace repose::sim {
+
+Contact::Contact(Run& run) : run_(run) {
+  const std::size_t n = run.particle.hull.vertices.size();
+  z_.resize(n);
+  in_contact_.resize(n);
+  walk_visited_.resize(n);
+  id_bits_.resize((n + 63) / 64);
+  if (run.adaptive) integrator_.emplace(run.body, run.tol.length, run.params.tolerance, run.tol.dt);
+}
+
+std::optional<RestPose> Contact::begin(const Vec3& com_velocity, const Vec3& omega, bool carry) {
+  Run& run = run_;
+  const int lowest = run.lowest_vertex(run.q);
+  const Vec3 p = run.particle.hull.vertices[static_cast<std::size_t>(lowest)];
+  const Vec3 arm = run.q * p;
+  support_ = {Vec3(run.com.x() + arm.x(), run.com.y() + arm.y(), 0.0), p, false, Vec3::UnitX()};
+  support_vertex_ = lowest;
+  reach_radius_ = run.hull_radius + support_.body.norm();
+  run.com = com_position(support_, run.q);
+  rot_ = {run.q, Vec3::Zero(), Vec3::Zero()};
+  if (carry) {
+    rot_.momentum = momentum_after_switch(run.body, run.q, run.com, omega, com_velocity, support_);
+    rot_.omega = omega_from_momentum(run.body, support_, run.q, rot_.momentum);
+  }
+  adaptive_.restart = true;
+  adaptive_.restart_step = 0;
+  update(carry ? omega : Vec3::Zero(), com_velocity);
+  return std::exchange(rest_, std::nullopt);
+}
+
+std::optional<RestPose> Contact::step() {
+  if (run_.adaptive)
+    adaptive_step();
+  else
+    paper_step();
+  return std::exchange(rest_, std::nullopt);
+}
+
+double Contact::kinetic_energy() const { return rotational_energy(run_.body, support_, rot_.q, rot_.omega); }
+
+// Heights of all hull vertices for orientation `qq` about the current support (only the third row of R).
+void Contact::heights(const Quat& qq, std::vector<double>& out) const {
+  const Vec3 r3 = qq.toRotationMatrix().row(2).transpose();
+  const auto& verts = run_.particle.hull.vertices;
+  for (std::size_t k = 0; k < verts.size(); ++k) out[k] = support_.world.z() + r3.dot(verts[k] - support_.body);
+}
+
+}  // namespace repose::sim

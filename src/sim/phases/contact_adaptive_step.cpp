@@ -1,0 +1,224 @@
+// The adaptive integrator's steps in the contact phase: events located on the dense output, and the vertex
+// sets found by walks over the hull's edge graph instead of scans (docs/method.md, "No overlap, ever").
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <span>
+
+#include "../events.hpp"
+#include "contact.hpp"
+
+namespace repose::sim {
+
+namespace {
+// The adaptive step is searched for events at this many evenly spaced instants of its dense output, so a
+// vertex that dips below the wall and back up inside one step is still caught.
+constexpr int kEventSamples = 8;
+// A support chosen from several touching points is chosen again at once, at most this many times.
+constexpr int kRedecisions = 2;
+}  // namespace
+
+// A bound of the angle the particle can turn in time h from now about the current support, from energy:
+// kinetic energy K grows at most by the potential energy the centre of mass loses, m·g·r_c per radian turned
+// (r_c: its distance from the pivot; damping only removes energy, impacts happen only at events), and
+// |ω| ≤ sqrt(2K / I_min) (I_min: the smallest moment of inertia about the support, or about a line's axis).
+// So dθ/dt ≤ sqrt(a + b·θ) with a = 2·K₀/I_min, b = 2·m·g·r_c/I_min, whence θ(h) ≤ sqrt(a)·h + b·h²/4.
+// K₀ carries a margin for the integrator's energy error (Tolerances::energy_margin).
+double Contact::smallest_moment() const {
+  const Mat3 inertia = support_inertia(run_.body, support_).inertia;  // body frame
+  if (support_.line) {
+    const Vec3 e = run_.q.conjugate() * support_.axis;
+    return e.dot(inertia * e);
+  }
+  Eigen::SelfAdjointEigenSolver<Mat3> eigen;
+  eigen.computeDirect(inertia, Eigen::EigenvaluesOnly);
+  return eigen.eigenvalues()(0);
+}
+
+std::array<double, 2> Contact::rate_coefficients() const {
+  const double k0 = kinetic_energy() + run_.tol.energy_margin;
+  const Body& body = run_.body;
+  return {2 * k0 / min_moment_, 2 * body.mass * run_.params.gravity * support_.body.norm() / min_moment_};
+}
+
+double Contact::arc_bound(double h) const {
+  const auto [a, b] = rate_coefficients();
+  return std::sqrt(a) * h + 0.25 * b * h * h;
+}
+
+// A bound of |ω| over the next time h (the same energy argument): sqrt(a + b·θ(h)).
+double Contact::rate_bound(double h) const {
+  const auto [a, b] = rate_coefficients();
+  return std::sqrt(a + b * arc_bound(h));
+}
+
+// One adaptive step, or the part of it before its first event, then the contact update at its end. The
+// step and its first event are found once, over the whole step, so advance_to() can stop inside it (the
+// state there is only interpolated, with no contact decision) without changing the run.
+void Contact::adaptive_step() {
+  Run& run = run_;
+  AdaptiveStep& step = adaptive_;
+  if (step.restart) {
+    // After an event the motion goes on at the pace the error control had reached, so it restarts from the
+    // proposed step; from rest (the first contact, a tip off a balance) it tries the first step. Either, if
+    // too long, is rejected and shortened by the error control.
+    const double first = step.restart_step > 0 ? step.restart_step : run.tol.first_step;
+    integrator_->start(support_, rot_, run.t, std::min(run.tol.dt, first));
+    min_moment_ = smallest_moment();
+    step.restart = false;
+    step.inside = false;
+    step.resume = false;
+  }
+  if (!step.inside) begin_adaptive_step();
+  const double end = std::min({step.end, run.tol.max_time, run.limit});
+  if (end < step.end) {  // stopped inside the step by advance_to() or the time limit
+    rot_ = integrator_->state_at(end);
+    run.q = rot_.q;
+    run.com = com_position(support_, run.q);
+    run.t = end;
+    return;
+  }
+  step.inside = false;
+  band_entered_ = step.band_entered;
+  // After an event the rest of the integrator's step is still the motion, unless the update below changes
+  // the support (which restarts the integrator): the next step resumes there.
+  step.resume = step.event;
+  step.restart_step = integrator_->proposed_step();
+  rot_ = integrator_->state_at(step.end);
+  run.q = rot_.q;
+  run.com = com_position(support_, run.q);
+  run.t = step.end;
+  ++run.steps;
+  // The decisions found at this step's end hold at the next step's start if the update changes nothing they
+  // depend on (the same contact and touching points, support and phase): then they are not recomputed.
+  const bool keep = end_decision_known_;
+  // A step without an event whose decisions did not change leaves the update nothing to decide while a
+  // single point touches: the contact and touching sets change only at events (after the stability test the
+  // contact set enters the decisions instead), the support the rules call for is the one they called for,
+  // and neither a rest nor an edge balance (two touching points) can begin.
+  if (keep && !run.smooth && touching_.size() <= 1 && !cached_decision_.hold) {
+    quiet_update();
+    decision_cached_ = true;
+    return;
+  }
+  decision_contact_.assign(contact_.begin(), contact_.end());
+  decision_touching_.assign(touching_.begin(), touching_.end());
+  const Support support_before = support_;
+  const int vertex_before = support_vertex_;
+  const bool finishing_before = finishing_;
+  // This step's event candidates reach the band's level (not a smooth particle's, collected to the wall
+  // only), for the support they were collected about.
+  const auto band_source = run.smooth ? BandSource::walk : BandSource::step_candidates;
+  if (update(rot_.omega, rot_.omega.cross(run.com - support_.world), false, band_source)) return;
+  // A support chosen from several touching points by the impact law is chosen again at once with the motion
+  // it leaves: the choice the paper's fixed step makes one step later, here at dt → 0. (An impact can switch
+  // to a line whose motion then lets one of its points lift.)
+  for (int again = 0; again < kRedecisions && !run.smooth && step.restart && touching_.size() >= 2; ++again) {
+    step.restart = false;
+    if (update(rot_.omega, rot_.omega.cross(run.com - support_.world))) return;
+    if (!step.restart) {
+      step.restart = true;
+      break;
+    }
+  }
+  decision_cached_ = keep && !step.restart && contact_ == decision_contact_ && touching_ == decision_touching_ &&
+                     support_vertex_ == vertex_before && support_.line == support_before.line &&
+                     support_.axis == support_before.axis && support_.world == support_before.world &&
+                     finishing_ == finishing_before;
+}
+
+// Takes one integrator step from t, or resumes the last one after an event that changed no support, and
+// finds its first event (step.end: the event, or the step's end).
+void Contact::begin_adaptive_step() {
+  Run& run = run_;
+  AdaptiveStep& step = adaptive_;
+  if (!step.resume || integrator_->time() <= run.t) integrator_->step();
+  step.resume = false;
+  step.inside = true;
+  const double t0 = run.t, t1 = integrator_->time();
+  // The rotation angle the step can sweep, a bound from energy (arc_bound), bounds which vertices can cause
+  // an event: a vertex at distance r from the pivot moves by at most arc·r (the support itself never does).
+  const double arc = arc_bound(t1 - t0);
+  const double level = run.smooth ? 0.0 : run.tol.band + run.tol.touch;
+  // Candidates: the vertices within reach of an event level from where they start, by a walk; their start
+  // heights (the baseline of the pierce test) are refreshed. Of those, the ones that can reach one of their
+  // own event levels are checked; most steps keep none and look no further.
+  vertices_below(rot_.q, level + arc * reach_radius_ + run.tol.event, event_candidates_, false);
+  const Vec3 r3 = rot_.q.toRotationMatrix().row(2).transpose();
+  std::vector<int>& reachable = walk_out_;
+  reachable.clear();
+  for (int k : event_candidates_) {
+    const Vec3 d = run.particle.hull.vertices[static_cast<std::size_t>(k)] - support_.body;
+    z_[k] = support_.world.z() + r3.dot(d);
+    const double reach = arc * d.norm() + run.tol.event;
+    if (z_[k] - reach < event_level(k) || z_[k] + reach > rise_level(k)) reachable.push_back(k);
+  }
+  // The dense output at evenly spaced instants: the first at which an event holds brackets it.
+  std::array<double, kEventSamples + 1> times;
+  for (int i = 0; i <= kEventSamples; ++i)
+    times[i] = i == kEventSamples ? t1 : t0 + (t1 - t0) * i / kEventSamples;
+  int first = -1;
+  if (!reachable.empty())
+    for (int i = 1; i <= kEventSamples && first < 0; ++i)
+      if (adaptive_event_at(integrator_->orientation_at(times[i])).any) first = i;
+  step.end = t1;
+  step.event = first > 0;
+  step.band_entered = false;
+  if (!step.event) {
+    locate_decision_change(t0, t1, std::span(times).subspan(1, kEventSamples - 1));
+    return;
+  }
+  const double before_event = locate_step_event(times[first - 1], times[first]);
+  locate_decision_change(t0, before_event, std::span(times).subspan(1, first - 1));
+}
+
+// The first event in [lo, hi] (none at lo, one at hi), over the vertices that can reach an event level in
+// the step, on the smallest event margin (continuous in time). As in the fixed step: the step ends just
+// after a band event, just before a vertex reaches the wall. Only an entry counts as "a point entered the
+// band" for the choice of support (a point that leaves it does not), and not once the stability test has
+// passed. Returns the bracket's lower end, the last instant known to be before the event.
+double Contact::locate_step_event(double lo, double hi) {
+  EventSearch search;
+  search.resolution = (hi - lo) * (kEventResolution * kEventSamples);  // the bracket is 1/8 of the step
+  search.max_halvings = kMaxHalvings;
+  search.hi_holds_known = true;
+  const Located at = locate(
+      lo, hi, search, [&](double s) { return adaptive_event_at(integrator_->orientation_at(s)).any; }, monotone,
+      [&](double s) { return event_margin(integrator_->orientation_at(s)); });
+  const EventFlags flags = adaptive_event_at(integrator_->orientation_at(at.hi));
+  adaptive_.band_entered = !flags.pierced && flags.entered && !finishing_;
+  adaptive_.end = flags.pierced ? at.lo : at.hi;
+  return at.lo;
+}
+
+// The adaptive integrator's events: those of the fixed step, and a contact leaving the ε band (Algorithm
+// 1's contact set shrinks: a line or surface contact may become a point), over the step's reachable vertices.
+Contact::EventFlags Contact::adaptive_event_at(const Quat& qq) const {
+  const Vec3 r3 = qq.toRotationMatrix().row(2).transpose();
+  bool left = false;
+  EventFlags e;
+  for (int k : walk_out_) {
+    const double zk = height_of(r3, k);
+    e.pierced = e.pierced || pierces(k, zk);
+    e.entered = e.entered || enters_band(k, zk);
+    left = left || rises(k, zk);
+  }
+  e.any = e.pierced || e.entered || left;
+  return e;
+}
+
+// The smallest margin of the reachable vertices to their events at orientation qq (length): negative once
+// one has passed below the wall or left the band, zero or negative once one has entered it.
+double Contact::event_margin(const Quat& qq) const {
+  const Vec3 r3 = qq.toRotationMatrix().row(2).transpose();
+  double m = INFINITY;
+  for (int k : walk_out_) {
+    const double zk = height_of(r3, k);
+    m = std::min({m, zk - pierce_level(k), rise_level(k) - zk});
+    if (band_events() && !in_contact_[k]) m = std::min(m, zk - run_.tol.band);
+  }
+  return m;
+}
+
+}  // namespace repose::sim

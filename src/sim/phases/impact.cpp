@@ -1,0 +1,72 @@
+// The impact phase (impact.hpp).
+#include "impact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace repose::sim {
+
+namespace {
+// Several points on the wall may each need an impact (the first leaves another approaching): bounded.
+constexpr int kImpactRounds = 16;
+// A run's rebounds are bounded: after this many impacts every touch hands over to the contact phase. A ball
+// with E = 0.99 bounces ~1,300 times before its rebounds fall below the touching tolerance; the bound stops a
+// chatter of ever-shorter flights (a particle with E near 1 rattling on its facets) from taking the run's
+// whole step budget.
+constexpr std::size_t kMaxImpacts = 10000;
+}  // namespace
+
+Impact::Impact(Run& run) : run_(run), law_{run.params.restitution, run.params.friction} {}
+
+Impact::Outcome Impact::resolve(const Motion& motion) {
+  Run& run = run_;
+  const Body& body = run.body;
+  const Mat3 R = run.q.toRotationMatrix();
+  const Mat3 inertia = R * body.inertia * R.transpose();  // about the centre of mass, world frame
+  arms_.clear();
+  for (const Vec3& v : run.particle.hull.vertices) {
+    const Vec3 arm = run.q * v;
+    if (run.com.z() + arm.z() <= run.tol.touch) arms_.push_back(arm);
+  }
+  const double v_tol = run.tol.speed;
+  const double potential = run.potential_energy();
+  Motion m = motion;
+  auto normal_speed = [&](const Vec3& arm) { return (m.velocity + m.omega.cross(arm)).z(); };
+  std::vector<ImpactRecord>& impacts = run.record.impacts;
+  for (int round = 0; round < kImpactRounds; ++round) {
+    approaching_.clear();
+    for (const Vec3& arm : arms_)
+      if (normal_speed(arm) < -v_tol) approaching_.push_back(arm);
+    if (approaching_.empty()) break;
+    const std::optional<Vec3> centre = approaching_.size() == 1
+                                           ? std::optional<Vec3>(approaching_[0])
+                                           : impulse_centre(body.mass, inertia, approaching_, m);
+    if (!centre) break;
+    const ImpactOutcome out = collide(body.mass, inertia, *centre, m, law_);
+    ImpactRecord record;
+    record.t = run.t;
+    record.point = run.com + *centre;
+    record.normal_speed_before = out.speed_before.z();
+    record.normal_speed_after = out.speed_after.z();
+    record.tangential_speed_before = out.speed_before.head<2>().norm();
+    record.tangential_speed_after = out.speed_after.head<2>().norm();
+    record.stick = out.stick;
+    record.points = static_cast<int>(approaching_.size());
+    record.energy_before = sim::kinetic_energy(body.mass, inertia, m) + potential;
+    m = out.after;
+    record.energy_after = sim::kinetic_energy(body.mass, inertia, m) + potential;
+    impacts.push_back(record);
+  }
+  // A rebound: every point on the wall leaves it fast enough to rise above the touching tolerance
+  // (u² > 2·g·touch); otherwise the particle stays on the wall and the contact phase takes over.
+  double slowest = INFINITY;
+  for (const Vec3& arm : arms_) slowest = std::min(slowest, normal_speed(arm));
+  const bool rebound =
+      impacts.size() < kMaxImpacts && slowest * std::abs(slowest) > 2 * run.params.gravity * run.tol.touch;
+  if (!impacts.empty() && impacts.back().t == run.t) impacts.back().rebound = rebound;
+  if (rebound) ++run.record.bounces;
+  return {rebound, m};
+}
+
+}  // namespace repose::sim
