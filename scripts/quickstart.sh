@@ -9,7 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 cmake --preset release >/dev/null
-cmake --build --preset release -j"$(nproc)" --target repose_cli _repose
+cmake --build --preset release -j"$(nproc)" --target quickstart  # repose_cli and _repose (CMakeLists.txt)
 cmake --install build/release --component cli >/dev/null
 cmake --install build/release --component python >/dev/null
 build/release/apps/repose/repose paper --out results/paper
