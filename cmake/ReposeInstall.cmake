@@ -15,7 +15,8 @@ else()
   install(DIRECTORY include/repose DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} PATTERN mpi_runner.hpp EXCLUDE)
 endif()
 if(TARGET repose_cli)
-  install(TARGETS repose_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  # Component cli: `cmake --install <build> --component cli` installs only the tool (scripts/quickstart.sh).
+  install(TARGETS repose_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT cli)
 endif()
 
 set(REPOSE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/repose)

@@ -1,15 +1,20 @@
 #!/usr/bin/env bash
-# Quick start: install the dependencies, build repose (release) and run the main job: `repose paper`, the
-# paper's four cases (six runs) with figures, ParaView series and a comparison table, in results/paper/.
-# Also installs the Python package (import repose).
+# Quick start: install the dependencies, build what the main job needs (release: the `repose` tool and the
+# Python module, not the tests or benchmarks, which scripts/test.sh builds), install both, and run the main
+# job: `repose paper`, the paper's four cases (six runs) with figures, ParaView series and a comparison table,
+# in results/paper/.
+#   the tool `repose`           -> /usr/local/bin/repose, on the PATH (cmake --install ... --component cli)
+#   the Python package `repose` -> where Debian's /usr/bin/python3 finds it (--component python)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 cmake --preset release >/dev/null
-cmake --build --preset release -j"$(nproc)"
-# The Python package, where Debian's /usr/bin/python3 finds it (python3 -c "import repose").
+cmake --build --preset release -j"$(nproc)" --target quickstart  # repose_cli and _repose (CMakeLists.txt)
+cmake --install build/release --component cli >/dev/null
 cmake --install build/release --component python >/dev/null
 build/release/apps/repose/repose paper --out results/paper
 echo "Look at: results/paper/report.html (open it in a browser: the runs in 3-D, the comparison, the figures),"
 echo "         results/paper/report.md (comparison with the paper), results/paper/<case>/*.png (figures),"
 echo "         results/paper/<case>/vtk/settling.pvd (open in ParaView), results/paper/<case>/timeseries.csv"
+echo "Installed: /usr/local/bin/repose (try repose --help) and the Python package (python3 -c 'import repose')."
+echo "The tests: scripts/test.sh"

@@ -48,7 +48,7 @@ TEST(CampaignOracle, PoseCountsEqualDropByDropSettles) {
   const PosesStudy& study = studies[0];
 
   // The reference: the study's documented defaults written out here, SI units, density 1, from rest
-  // touching the wall, damping C = 0.05·m·sqrt(g·L³) (README, docs/rest-poses.md).
+  // touching the wall, damping C = 0.05·m·sqrt(g·L³) (docs/rest-poses.md).
   const Particle box = load_particle(spec, 1.0);
   SettleParams params;
   params.damping = 0.05 * box.mass.mass * std::sqrt(params.gravity * std::pow(box.length, 3));
