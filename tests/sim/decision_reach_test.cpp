@@ -1,8 +1,8 @@
-// The contact decisions' reach (src/sim/decisions.cpp) is a bound: a pose turned about the support by less
+// The contact decisions' reach (src/sim/phases/contact_decisions.cpp) is a bound: a pose turned about the support by less
 // than the reach gives the same decisions (contact type, hold, the paper's stability test, a line's support)
 // for the same contact set, so a step that cannot turn that far is not checked inside. The oracle is the
-// decisions themselves, evaluated at the turned pose; the reach is only the claim. White box: the engine's
-// state (Settler::Impl) is driven step by step through real drops, and at each pose in contact the turned
+// decisions themselves, evaluated at the turned pose; the reach is only the claim. White box: the engine
+// (sim::Engine) is driven step by step through real drops, and at each pose of its contact phase the turned
 // poses are tried, the last of them at 0.999 of the reach, where a reach too long by any factor shows.
 #include <gtest/gtest.h>
 
@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "../../src/sim/settler.hpp"
+#include "../../src/sim/engine.hpp"
 
 namespace repose {
 namespace {
@@ -27,7 +27,9 @@ namespace {
 constexpr int kDecisions = 4;  // the contact type, the hold, the paper's stability test, a line's support
 constexpr const char* kNames[kDecisions] = {"type", "hold", "stable", "line"};
 
-int value(const Settler::Impl::Decision& d, int i) {
+using Decision = sim::Contact::Decision;
+
+int value(const Decision& d, int i) {
   switch (i) {
     case 0:
       return static_cast<int>(d.type);
@@ -47,20 +49,20 @@ struct Tally {
 };
 
 // The contact set at orientation qq about the current support, by the same test as the update.
-std::vector<int> contact_set_at(const Settler::Impl& s, const Quat& qq) {
+std::vector<int> contact_set_at(const sim::Run& run, const sim::Contact& c, const Quat& qq) {
   const Vec3 r3 = qq.toRotationMatrix().row(2).transpose();
   std::vector<int> out;
-  for (int k = 0; k < static_cast<int>(s.particle.hull.vertices.size()); ++k)
-    if (s.height_of(r3, k) <= s.band + s.touch_tol) out.push_back(k);
+  for (int k = 0; k < static_cast<int>(run.particle.hull.vertices.size()); ++k)
+    if (c.height_of(r3, k) <= run.tol.band + run.tol.touch) out.push_back(k);
   return out;
 }
 
 // The smallest angle in (0, limit] about `axis` at which decision i differs from `d` (sampled at 32 angles,
 // then bisected to 1e-6 of the limit), or INFINITY.
-double first_change(Settler::Impl& s, const Settler::Impl::Decision& d, int i, const Vec3& axis,
-                    double limit) {
+double first_change(sim::Contact& c, const Quat& q, const std::vector<int>& all, const Decision& d, int i,
+                    const Vec3& axis, double limit) {
   auto differs = [&](double a) {
-    return value(s.decision_at((Quat(Eigen::AngleAxisd(a, axis)) * s.q).normalized(), false), i) !=
+    return value(c.decision_at((Quat(Eigen::AngleAxisd(a, axis)) * q).normalized(), false, all), i) !=
            value(d, i);
   };
   double lo = 0;
@@ -87,46 +89,46 @@ void check_drops(const std::string& spec, int drops, Tally& tally) {
   std::vector<int> all(particle.hull.vertices.size());
   std::iota(all.begin(), all.end(), 0);
   for (int drop = 0; drop < drops; ++drop) {
-    Settler::Impl s(particle, params, drop_orientation(1, static_cast<std::uint64_t>(drop)));
-    for (int step = 0; step < 20000 && s.status == Status::running; ++step) {
-      s.step();
-      if (s.falling || s.status != Status::running || s.in_step) continue;
+    sim::Engine engine(particle, params, drop_orientation(1, static_cast<std::uint64_t>(drop)));
+    const sim::Run& run = engine.run();
+    for (int step = 0; step < 20000 && engine.status() == Status::running; ++step) {
+      engine.step();
+      auto* contact = std::get_if<sim::Contact>(&engine.phase());
+      if (contact == nullptr || contact->inside_step()) continue;
+      sim::Contact& s = *contact;
       // Every vertex a candidate, so that a decision's own contact set (once the stability test has
-      // passed) is exact at any pose; the run's own candidates are put back.
-      const std::vector<int> candidates = s.event_candidates;
-      s.event_candidates = all;
-      const Settler::Impl::Decision d = s.decision_at(s.q, true);
-      const bool own_set = s.band_crossings_in_decisions();
-      const std::vector<int> set = contact_set_at(s, s.q);
+      // passed) is exact at any pose.
+      const Decision d = s.decision_at(run.q, true, all);
+      const bool own_set = s.decisions_use_own_set();
+      const std::vector<int> set = contact_set_at(run, s, run.q);
       ++tally.poses;
       for (int j = 0; j < 2; ++j) {
-        Vec3 axis = s.support.line ? s.support.axis : Vec3(normal(random), normal(random), normal(random));
+        Vec3 axis = s.support().line ? s.support().axis : Vec3(normal(random), normal(random), normal(random));
         axis = (j % 2 ? 1.0 : -1.0) * axis.normalized();
         // Within the reach: the same decisions (the turn's angle at random, and just short of the reach).
         for (double fraction : {uniform(random), 0.999}) {
           const double angle = fraction * std::min(d.reach(), 1.0);
-          const Quat turned = (Quat(Eigen::AngleAxisd(angle, axis)) * s.q).normalized();
-          if (angle <= 0 || (own_set && contact_set_at(s, turned) != set)) continue;
+          const Quat turned = (Quat(Eigen::AngleAxisd(angle, axis)) * run.q).normalized();
+          if (angle <= 0 || (own_set && contact_set_at(run, s, turned) != set)) continue;
           ++tally.turns;
-          EXPECT_TRUE(s.decision_at(turned, false) == d)
-              << spec << " drop " << drop << " t " << s.t << ": turned by " << angle << " rad of a reach "
-              << d.reach() << " (line " << s.support.line << ")";
+          EXPECT_TRUE(s.decision_at(turned, false, all) == d)
+              << spec << " drop " << drop << " t " << run.t << ": turned by " << angle << " rad of a reach "
+              << d.reach() << " (line " << s.support().line << ")";
         }
         // Each decision on its own: its first change along the turn comes no sooner than its reach.
         for (int i = 0; i < kDecisions && !own_set; ++i) {
           const double reach = d.reach_of[static_cast<std::size_t>(i)];
           if (!(reach > 0 && reach < 0.2)) continue;
-          const double change = first_change(s, d, i, axis, 10 * reach);
+          const double change = first_change(s, run.q, all, d, i, axis, 10 * reach);
           if (!std::isfinite(change)) continue;
           ++tally.flips[static_cast<std::size_t>(i)];
           const double ratio = reach / change;
           tally.tightest[static_cast<std::size_t>(i)] =
               std::max(tally.tightest[static_cast<std::size_t>(i)], ratio);
-          EXPECT_LE(ratio, 1.0) << kNames[i] << ": " << spec << " drop " << drop << " t " << s.t
+          EXPECT_LE(ratio, 1.0) << kNames[i] << ": " << spec << " drop " << drop << " t " << run.t
                                 << " changes after " << change << " rad of a reach " << reach;
         }
       }
-      s.event_candidates = candidates;
       if (::testing::Test::HasFailure()) return;
     }
   }

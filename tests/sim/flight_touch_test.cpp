@@ -1,8 +1,8 @@
-// The touch that ends a spinning flight (Settler::Impl::locate_touch) is the first instant in the flight
+// The touch that ends a spinning flight (sim::Flight::locate_touch) is the first instant in the flight
 // step at which a hull vertex reaches the wall. Oracle, computed here from the flight's own motion (the
 // centre of mass on its parabola, the orientation from the integrator's dense output): a scan of the step at
 // 4,000 instants finds no vertex below the wall before the located touch, and at the touch the lowest vertex
-// is on the wall. White box: the engine's state is driven step by step through tossed drops of irregular
+// is on the wall. White box: the engine (sim::Engine) is driven step by step through tossed drops of irregular
 // grains with lively rebounds (E = 0.9), which make many short flights, each starting where an impact ended.
 #include <gtest/gtest.h>
 
@@ -15,18 +15,17 @@
 #include <string>
 #include <vector>
 
-#include "../../src/sim/settler.hpp"
+#include "../../src/sim/engine.hpp"
 
 namespace repose {
 namespace {
 
 // The lowest hull vertex's height at time s of the flight step just taken.
-double lowest_height(const Settler::Impl& s, double t) {
-  const Quat q = s.flight_rotation->orientation_at(t);
-  const double tau = t - s.fall_t0;
-  const double zc = s.fall_origin.z() + s.fall_velocity.z() * tau - 0.5 * s.params.gravity * tau * tau;
+double lowest_height(const Particle& p, const sim::Flight& f, double t) {
+  const Quat q = f.rotation().orientation_at(t);
+  const double zc = f.centre_at(t).first;
   double lowest = std::numeric_limits<double>::infinity();
-  for (const Vec3& v : s.particle.hull.vertices) lowest = std::min(lowest, zc + (q * v).z());
+  for (const Vec3& v : p.hull.vertices) lowest = std::min(lowest, zc + (q * v).z());
   return lowest;
 }
 
@@ -52,33 +51,32 @@ TEST(FlightTouch, IsTheFirstInstantAVertexReachesTheWall) {
       const Toss toss = drop_toss(1, static_cast<std::uint64_t>(drop), {1.5 * std::sqrt(g * L), spin_max});
       params.velocity = toss.velocity;
       params.spin = toss.spin;
-      Settler::Impl s(p, params, drop_orientation(1, static_cast<std::uint64_t>(drop)));
-      for (int step = 0; step < 200000 && s.status == Status::running; ++step) {
-        // The engine's next flight step taken here, as spin_step takes it, so that its located touch can be
-        // checked before the engine acts on it (the engine then goes on from this step).
-        if (s.falling && s.spinning && s.t >= s.flight_step_end) {
-          const auto [a, b] = s.flight_rotation->step();
-          s.flight_step_end = b;
-          s.flight_touch = s.locate_touch(a, b);
-          const double touch = s.flight_touch, end = std::min(touch, b);
+      sim::Engine engine(p, params, drop_orientation(1, static_cast<std::uint64_t>(drop)));
+      for (int step = 0; step < 200000 && engine.status() == Status::running; ++step) {
+        // The flight's next integrator step taken here, as the flight phase takes it, so that its located
+        // touch can be checked before the engine acts on it (the engine then goes on from this step).
+        auto* f = std::get_if<sim::Flight>(&engine.phase());
+        if (f != nullptr && f->spinning() && engine.run().t >= f->step_end()) {
+          const auto [a, b] = f->integrate_step();
+          const double touch = f->located_touch(), end = std::min(touch, b);
           const std::string what = std::string(spec) + " drop " + std::to_string(drop) + " step [" +
                                    std::to_string(a) + ", " + std::to_string(b) + "]";
           for (int i = 0; i < kScan; ++i) {
             const double t = a + (end - a) * i / kScan;
-            ASSERT_GE(lowest_height(s, t), -1e-12 * L)
+            ASSERT_GE(lowest_height(p, *f, t), -1e-12 * L)
                 << what << ": below the wall at " << t << " < " << touch;
           }
           ++steps_checked;
           if (touch <= b) {
             ++touches;
             // Located to 2^-44 of the step: at the flight's speeds, far below 1e-9·L of height.
-            EXPECT_LE(std::abs(lowest_height(s, touch)), 1e-9 * L)
+            EXPECT_LE(std::abs(lowest_height(p, *f, touch)), 1e-9 * L)
                 << what << ": no vertex on the wall at " << touch;
           }
         }
-        s.step();
+        engine.step();
       }
-      EXPECT_EQ(s.status, Status::rest);
+      EXPECT_EQ(engine.status(), Status::rest);
     }
   }
   // Measured: 4,682 flight steps, 166 of them ending at a touch.
