@@ -126,17 +126,14 @@ CampaignOptions campaign_options(const PosesOptions& o, const CLI::App& sub, int
   s.seed = o.seed;
   s.method = parse_pose_method(o.method);
   s.density = o.physics.density;
-  s.params = o.physics.params;
+  o.physics.apply_given(sub, s.params);
   s.params.gravity = standard_gravity(o.physics.unit_system());
-  s.params.smooth = o.physics.smooth_mode();
-  s.params.integrator = o.physics.integrator_kind();
   s.damping_given = given("--damping");
   if (!s.damping_given) s.params.damping = 0;  // set from the ratio once the particle is known
   validate(s.params);
   s.damping_ratio = o.damping_ratio;
   s.persistence = given("--persistence") ? o.persistence : -1;
   s.decide_early = !o.full_settle;
-  s.params.friction = o.physics.friction_value();
   s.toss = {o.velocity_max, o.spin_max};
   c.threads = threads;
   c.chunk = o.chunk;
@@ -284,8 +281,7 @@ Command add_poses_command(CLI::App& app) {
   sub->add_option("--method", o->method,
                   "dynamic (the settling engine) or quasi-static (steepest descent of the COM height)")
       ->check(CLI::IsMember({"dynamic", "quasi-static"}));
-  add_physics_options(*sub, o->physics,
-                      "Damping coefficient C of Eq 4 (mass*length^2/time); overrides --damping-ratio");
+  add_physics_options(*sub, o->physics, "Damping coefficient C of Eq 4 ({unit}); overrides --damping-ratio");
   add_mesh_options(*sub, o->mesh);
   add_impact_options(*sub, o->physics);
   sub->add_option(

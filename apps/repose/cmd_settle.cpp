@@ -35,7 +35,6 @@ struct SettleOptions {
   double sample_dt = 0;
   int frames = 0;
   bool json = false;
-  std::string velocity, spin;  // X,Y,Z: a toss (world frame)
 };
 
 // Why the particle was treated as smooth or not, for the user to check the automatic decision.
@@ -121,25 +120,8 @@ RunSetup resolve_setup(const SettleOptions& o, const CLI::App& sub) {
   }
   SettleParams& p = setup.params;
   p.gravity = standard_gravity(units == "cgs" ? UnitSystem::cgs : UnitSystem::si);
-  const auto take = [&](const char* option, double& field, double value) {
-    if (given(option) || o.scenario.empty()) field = value;
-  };
-  take("--damping", p.damping, o.physics.params.damping);
-  take("--dt", p.dt, o.physics.params.dt);
-  take("--tolerance", p.tolerance, o.physics.params.tolerance);
-  if (given("--integrator") || o.scenario.empty()) p.integrator = o.physics.integrator_kind();
-  take("--contact-threshold", p.contact_threshold, o.physics.params.contact_threshold);
-  take("--line-threshold", p.line_threshold, o.physics.params.line_threshold);
-  take("--drop-height", p.drop_height, o.physics.params.drop_height);
-  take("--drop-speed", p.drop_speed, o.physics.params.drop_speed);
-  take("--max-time", p.max_time, o.physics.params.max_time);
-  if (given("--max-steps") || o.scenario.empty()) p.max_steps = o.physics.params.max_steps;
-  if (given("--smooth") || o.scenario.empty()) p.smooth = o.physics.smooth_mode();
-  if (given("--velocity")) p.velocity = parse_vector("--velocity", o.velocity);
-  if (given("--spin")) p.spin = parse_vector("--spin", o.spin);
-  // Without a scenario these are the defaults (or the options); with one, only options given override it.
-  take("--restitution", p.restitution, o.physics.params.restitution);
-  if (given("--friction")) p.friction = o.physics.friction_value();
+  // Without a scenario these are the defaults; with one, its values. The options given go on top.
+  o.physics.apply_given(sub, p);
   validate(p);
   return setup;
 }
@@ -155,12 +137,9 @@ Command add_settle_command(CLI::App& app) {
       "Scenario file (JSON, e.g. scenarios/paper/cylinder-1106.json); options given here override it");
   sub->add_option("--orientation", o->orientation,
                   "Initial orientation, body to world: quat:w,x,y,z | axis-angle:x,y,z,radians | identity");
-  add_physics_options(*sub, o->physics, "Damping coefficient C of Eq 4 (mass*length^2/time; default 0)");
+  add_physics_options(*sub, o->physics);
   add_mesh_options(*sub, o->mesh);
-  sub->add_option("--velocity", o->velocity,
-                  "A toss: the centre of mass's initial velocity X,Y,Z (world frame, length/time; z adds to "
-                  "-drop-speed)");
-  sub->add_option("--spin", o->spin, "A toss: the initial angular velocity X,Y,Z (world frame, rad/time)");
+  add_param_options(*sub, o->physics, CliGroup::toss);  // --velocity, --spin
   add_impact_options(*sub, o->physics);
   sub->add_option("--out", o->out_dir, "Write timeseries.csv and summary.json into this directory");
   sub->add_option("--vtk", o->vtk_dir, "Write ParaView frames (.vtp) and settling.pvd into this directory");

@@ -1,89 +1,105 @@
-// The physical options `settle` and `poses` share: density, units and the engine's parameters.
+// The physical options `settle` and `poses` share: density, units and the engine's parameters, one option
+// per entry of the parameter table (repose/model/param_table.hpp) named --name-with-dashes.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <exception>
+#include <map>
 #include <string>
+#include <vector>
 
+#include "format.hpp"
 #include "repose/error.hpp"
-#include "repose/model/params.hpp"
+#include "repose/model/param_table.hpp"
 
 namespace repose::cli {
 
 struct PhysicsOptions {
   double density = 1.0;
   std::string units = "si";
-  std::string smooth = "auto";
-  std::string integrator;  ///< empty: the library's default
-  std::string friction = "inf";
-  SettleParams params;
-
-  /// --friction: a number >= 0 or "inf" (no slip). Throws repose::Error otherwise.
-  double friction_value() const {
-    std::size_t used = 0;
-    double mu = -1;
-    try {
-      mu = std::stod(friction, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (friction.empty() || used != friction.size() || std::isnan(mu) || mu < 0)
-      throw Error("option --friction takes a number >= 0 or inf (no slip), got '" + friction + "'");
-    return mu;
-  }
-
-  Integrator integrator_kind() const {
-    return integrator.empty() ? SettleParams{}.integrator : parse_integrator(integrator);
-  }
+  SettleParams params;  ///< numbers are bound to their fields
+  /// Vectors, choices and numbers that may be inf, by parameter name: kept as given, parsed by apply_given.
+  std::map<std::string, std::string> text;
 
   UnitSystem unit_system() const { return units == "cgs" ? UnitSystem::cgs : UnitSystem::si; }
-  SmoothMode smooth_mode() const {
-    return smooth == "on" ? SmoothMode::on : smooth == "off" ? SmoothMode::off : SmoothMode::automatic;
-  }
+
+  /// Sets in `p` every parameter whose option `sub` was given: on top of the defaults or a scenario's.
+  /// Throws repose::Error naming the option for a value it cannot take.
+  void apply_given(const CLI::App& sub, SettleParams& p) const;
 };
 
-/// Registers --density, --units, --damping (with `damping_help`), --integrator, --dt, --tolerance,
-/// --contact-threshold,
-/// --line-threshold, --smooth, --drop-height, --drop-speed, --max-time and --max-steps on `sub`.
-inline void add_physics_options(CLI::App& sub, PhysicsOptions& o, const std::string& damping_help) {
+/// Whether the option is taken as text (its own parser names it in errors) rather than bound to the field.
+inline bool taken_as_text(const ParamInfo& info) {
+  if (std::holds_alternative<double SettleParams::*>(info.member)) return info.range.allows_infinity();
+  return std::holds_alternative<Vec3 SettleParams::*>(info.member) ||
+         std::holds_alternative<ParamChoice>(info.member);
+}
+
+/// A number in the parameter's range, "inf" included (--friction); throws repose::Error naming `option`.
+inline double parse_number_or_inf(const ParamInfo& info, const std::string& option, const std::string& text) {
+  std::size_t used = 0;
+  double x = NAN;
+  try {
+    x = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (text.empty() || used != text.size() || !info.range.contains(x))
+    throw Error("option " + option + " takes " + info.range.text + ", got '" + text + "'");
+  return x;
+}
+
+inline void PhysicsOptions::apply_given(const CLI::App& sub, SettleParams& p) const {
+  for (const ParamInfo& info : param_table()) {
+    const std::string option = "--" + option_name(info);
+    const CLI::Option* given = info.cli == CliGroup::none ? nullptr : sub.get_option_no_throw(option);
+    if (given == nullptr || given->count() == 0) continue;  // not an option of this command, or not given
+    const auto as_text = [&] { return text.at(info.name); };
+    std::visit(Overloaded{[&](double SettleParams::*m) {
+                            p.*m = taken_as_text(info) ? parse_number_or_inf(info, option, as_text())
+                                                       : params.*m;
+                          },
+                          [&](Vec3 SettleParams::*m) { p.*m = parse_vector(option, as_text()); },
+                          [&](const ParamChoice& c) { c.set(p, as_text()); },  // checked by IsMember
+                          [&](auto m) { p.*m = params.*m; }},
+               info.member);
+  }
+}
+
+/// Registers the options of the table's `group` on `sub`, in table order; `help` replaces one entry's help
+/// text (by parameter name; "{unit}" and "{default}" are filled in).
+inline void add_param_options(CLI::App& sub, PhysicsOptions& o, CliGroup group,
+                              const std::map<std::string, std::string>& help = {}) {
+  for (const ParamInfo& info : param_table()) {
+    if (info.cli != group) continue;
+    const std::string option = "--" + option_name(info);
+    const auto own = help.find(info.name);
+    const std::string text = param_help(info, own == help.end() ? std::string() : own->second);
+    if (taken_as_text(info)) {
+      CLI::Option* added = sub.add_option(option, o.text[info.name], text);
+      if (const auto* c = std::get_if<ParamChoice>(&info.member))
+        added->check(CLI::IsMember(std::vector<std::string>(c->names.begin(), c->names.end())));
+      continue;
+    }
+    std::visit(Overloaded{[&](const ParamChoice&) {}, [&](Vec3 SettleParams::*) {},
+                          [&](auto m) { sub.add_option(option, o.params.*m, text); }},
+               info.member);
+  }
+}
+
+/// Registers --density, --units and the table's physics options on `sub`; `damping_help`, if given, replaces
+/// the table's help of --damping (a command where damping has another default).
+inline void add_physics_options(CLI::App& sub, PhysicsOptions& o, const std::string& damping_help = {}) {
   sub.add_option("--density", o.density, "Density (kg/m^3 in si, g/cm^3 in cgs; default 1)");
   sub.add_option("--units", o.units, "si (m, kg, s; g = 9.81) or cgs (cm, g, s; g = 981)")
       ->check(CLI::IsMember({"si", "cgs"}));
-  sub.add_option("--damping", o.params.damping, damping_help);
-  sub.add_option("--integrator", o.integrator,
-                 "Rotation phases: adaptive (Dormand-Prince 5(4) with events located on its dense output) or "
-                 "paper (the paper's fixed step with its pseudo-time iteration); default " +
-                     std::string(to_string(SettleParams{}.integrator)))
-      ->check(CLI::IsMember({"paper", "adaptive"}));
-  sub.add_option("--dt", o.params.dt,
-                 "paper: the time step; adaptive: the longest step (0 or unset: automatic, 1e-3*sqrt(L/g) "
-                 "for paper, 0.2*sqrt(L/g) for adaptive)");
-  sub.add_option("--tolerance", o.params.tolerance,
-                 "adaptive: local error bound per step, relative to L and sqrt(L/g) (default 1e-9)");
-  sub.add_option("--contact-threshold", o.params.contact_threshold,
-                 "Contact threshold as a fraction of L (default 0.05, as in the paper)");
-  sub.add_option("--line-threshold", o.params.line_threshold,
-                 "Line vs surface: RSS of the best-fit line below this fraction of L^2 (default 0.1)");
-  sub.add_option("--smooth", o.smooth, "Smooth-particle model: auto | on | off (default auto)")
-      ->check(CLI::IsMember({"auto", "on", "off"}));
-  sub.add_option("--drop-height", o.params.drop_height,
-                 "Initial height of the lowest point above the wall (default 0: touching, at rest)");
-  sub.add_option("--drop-speed", o.params.drop_speed, "Initial downward speed (default 0)");
-  sub.add_option("--max-time", o.params.max_time,
-                 "Simulated-time limit per run (0 or unset: automatic, 2000*sqrt(L/g) plus the fall time)");
-  sub.add_option("--max-steps", o.params.max_steps, "Step limit per run (default 2e7)");
+  add_param_options(sub, o, CliGroup::physics, {{"damping", damping_help}});
 }
 
 /// Registers --restitution and --friction (impacts while airborne) on `sub`.
 inline void add_impact_options(CLI::App& sub, PhysicsOptions& o) {
-  sub.add_option(
-      "--restitution", o.params.restitution,
-      "Impacts while airborne: Stronge's energetic coefficient of restitution E in [0, 1] (default 0: "
-      "no rebound, the paper's touch)");
-  sub.add_option(
-      "--friction", o.friction,
-      "Impacts while airborne: Coulomb's friction coefficient mu >= 0, or inf: no slip (default inf)");
+  add_param_options(sub, o, CliGroup::impact);
 }
 
 }  // namespace repose::cli

@@ -24,10 +24,8 @@ struct PyParticle {
 /// numbers w, x, y, z (normalised). Throws repose::Error naming the problem.
 Quat orientation_from(const py::handle& value);
 
-/// SettleParams from keyword arguments named as the CLI's options (damping, integrator, dt, tolerance,
-/// contact_threshold, line_threshold, smooth, drop_height, drop_speed, velocity, spin, restitution,
-/// friction, max_time, max_steps, gravity), on top of `base`. Throws repose::Error for an unknown name or a
-/// bad value, naming it.
+/// SettleParams from keyword arguments: the parameter table's entries marked in_python, under their names
+/// (param_table.hpp), on top of `base`. Throws repose::Error for an unknown name or a bad value, naming it.
 SettleParams params_from(const py::dict& kwargs, const std::string& context, SettleParams base = {});
 
 void bind_particle(py::module_& m);

@@ -20,6 +20,7 @@
 #include "bindings.hpp"
 #include "repose/error.hpp"
 #include "repose/model/orientation.hpp"
+#include "repose/model/param_table.hpp"
 #include "repose/output/report.hpp"
 #include "repose/poses/ensemble.hpp"
 #include "repose/poses/landscape.hpp"
@@ -237,49 +238,28 @@ SettleParams params_from(const py::dict& kwargs, const std::string& context, Set
     if (x.size() != 3) throw Error(context + ": " + name + " must be three numbers x, y, z");
     return Vec3(x[0], x[1], x[2]);
   };
+  const auto choice = [&](const std::string& name, const py::handle& v, const ParamChoice& c) {
+    if (!py::isinstance<py::str>(v)) throw Error(context + ": " + name + " must be a string");
+    try {
+      c.set(p, v.cast<std::string>());
+    } catch (const Error& e) {
+      throw Error(context + ": " + e.what());
+    }
+  };
   for (auto [key, value] : kwargs) {
     const std::string name = key.cast<std::string>();
-    if (name == "gravity")
-      p.gravity = number(name, value);
-    else if (name == "damping")
-      p.damping = number(name, value);
-    else if (name == "integrator")
-      p.integrator = parse_integrator(value.cast<std::string>());
-    else if (name == "dt")
-      p.dt = number(name, value);
-    else if (name == "tolerance")
-      p.tolerance = number(name, value);
-    else if (name == "contact_threshold")
-      p.contact_threshold = number(name, value);
-    else if (name == "line_threshold")
-      p.line_threshold = number(name, value);
-    else if (name == "drop_height")
-      p.drop_height = number(name, value);
-    else if (name == "drop_speed")
-      p.drop_speed = number(name, value);
-    else if (name == "velocity")
-      p.velocity = vector(name, value);
-    else if (name == "spin")
-      p.spin = vector(name, value);
-    else if (name == "restitution")
-      p.restitution = number(name, value);
-    else if (name == "friction")
-      p.friction = value.is_none() ? INFINITY : number(name, value);
-    else if (name == "max_time")
-      p.max_time = number(name, value);
-    else if (name == "max_steps")
-      p.max_steps = static_cast<long>(number(name, value));
-    else if (name == "smooth") {
-      const std::string mode = value.cast<std::string>();
-      if (mode != "auto" && mode != "on" && mode != "off")
-        throw Error(context + ": smooth must be 'auto', 'on' or 'off', got '" + mode + "'");
-      p.smooth = mode == "on" ? SmoothMode::on : mode == "off" ? SmoothMode::off : SmoothMode::automatic;
-    } else {
-      throw Error(
-          context + ": unknown parameter '" + name +
-          "' (accepted: gravity, damping, integrator, dt, tolerance, contact_threshold, line_threshold, "
-          "smooth, drop_height, drop_speed, velocity, spin, restitution, friction, max_time, max_steps)");
-    }
+    const ParamInfo* info = find_param(name);
+    if (info == nullptr || !(info->uses & in_python))
+      throw Error(context + ": unknown parameter '" + name + "' (accepted: " + param_names(in_python) + ")");
+    std::visit(Overloaded{[&](double SettleParams::*m) {  // None: infinity where valid (friction: no slip)
+                            p.*m = value.is_none() && info->range.allows_infinity() ? INFINITY
+                                                                                    : number(name, value);
+                          },
+                          [&](long SettleParams::*m) { p.*m = static_cast<long>(number(name, value)); },
+                          [&](int SettleParams::*m) { p.*m = static_cast<int>(number(name, value)); },
+                          [&](Vec3 SettleParams::*m) { p.*m = vector(name, value); },
+                          [&](const ParamChoice& c) { choice(name, value, c); }},
+               info->member);
   }
   validate(p);
   return p;

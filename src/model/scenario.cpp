@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -10,6 +11,7 @@
 #include "repose/error.hpp"
 #include "repose/geometry/shapes.hpp"
 #include "repose/model/orientation.hpp"
+#include "repose/model/param_table.hpp"
 
 namespace repose {
 
@@ -35,6 +37,17 @@ std::string text(const json& j, const char* key, const std::string& fallback, co
   if (!j.contains(key)) return fallback;
   if (!j[key].is_string()) throw Error(origin + ": field '" + key + "' must be a string");
   return j[key].get<std::string>();
+}
+
+// A whole number that fits Int, checked before nlohmann's plain cast (max_steps is no scenario key, but a
+// whole-number parameter may become one).
+template <class Int>
+Int whole_number(const json& j, const char* key, const std::string& origin) {
+  const json& v = j[key];
+  if (!v.is_number_integer() || v.get<double>() < static_cast<double>(std::numeric_limits<Int>::min()) ||
+      v.get<double>() > static_cast<double>(std::numeric_limits<Int>::max()))
+    throw Error(origin + ": field '" + key + "' must be a whole number");
+  return v.get<Int>();
 }
 
 bool boolean(const json& j, const char* key, const std::string& origin) {
@@ -63,6 +76,23 @@ MeshOptions mesh_options(const json& j, const Scenario& s, const std::string& or
   return m;
 }
 
+// The parameter `info` from its key, which `j` has: a number, [x, y, z] or a choice's name.
+void read_param(const json& j, const ParamInfo& info, SettleParams& p, const std::string& origin) {
+  std::visit(Overloaded{[&](double SettleParams::*m) { p.*m = number(j, info.name, p.*m, origin); },
+                        [&](long SettleParams::*m) { p.*m = whole_number<long>(j, info.name, origin); },
+                        [&](int SettleParams::*m) { p.*m = whole_number<int>(j, info.name, origin); },
+                        [&](Vec3 SettleParams::*m) { p.*m = vector3(j, info.name, p.*m, origin); },
+                        [&](const ParamChoice& c) {
+                          const std::string name = text(j, info.name, "", origin);
+                          try {
+                            c.set(p, name);
+                          } catch (const Error& e) {
+                            throw Error(origin + ": " + e.what());
+                          }
+                        }},
+             info.member);
+}
+
 }  // namespace
 
 Scenario parse_scenario(const std::string& json_text, const std::string& origin) {
@@ -74,12 +104,15 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
     throw Error(origin + ": invalid JSON: " + e.what());
   }
   if (!j.is_object()) throw Error(origin + ": a scenario must be a JSON object");
-  static const std::set<std::string> known = {
-      "name",        "description",       "note",     "particle",          "density",        "units",
-      "orientation", "damping",           "dt",       "contact_threshold", "line_threshold", "drop_height",
-      "drop_speed",  "max_time",          "smooth",   "integrator",        "tolerance",      "velocity",
-      "spin",        "restitution",       "friction", "mesh_units",        "scale",          "inertia",
-      "repair",      "largest_component", "com"};
+  // The scenario's own fields, then the parameters' (param_table.cpp).
+  static const std::set<std::string> known = [] {
+    std::set<std::string> keys = {"name",   "description",       "note",       "particle", "density",
+                                  "units",  "orientation",       "mesh_units", "scale",    "inertia",
+                                  "repair", "largest_component", "com"};
+    for (const ParamInfo& info : param_table())
+      if (info.uses & in_scenario) keys.insert(info.name);
+    return keys;
+  }();
   for (const auto& [key, value] : j.items())
     if (!known.count(key)) throw Error(origin + ": unknown field '" + key + "'");
   if (!j.contains("particle")) throw Error(origin + ": missing field 'particle'");
@@ -109,27 +142,8 @@ Scenario parse_scenario(const std::string& json_text, const std::string& origin)
 
   SettleParams& p = s.params;
   p.gravity = standard_gravity(s.units);
-  p.damping = number(j, "damping", p.damping, origin);
-  p.dt = number(j, "dt", p.dt, origin);
-  p.tolerance = number(j, "tolerance", p.tolerance, origin);
-  try {
-    p.integrator = parse_integrator(text(j, "integrator", to_string(p.integrator), origin));
-  } catch (const Error& e) {
-    throw Error(origin + ": " + e.what());
-  }
-  p.contact_threshold = number(j, "contact_threshold", p.contact_threshold, origin);
-  p.line_threshold = number(j, "line_threshold", p.line_threshold, origin);
-  p.drop_height = number(j, "drop_height", p.drop_height, origin);
-  p.drop_speed = number(j, "drop_speed", p.drop_speed, origin);
-  p.max_time = number(j, "max_time", p.max_time, origin);
-  p.velocity = vector3(j, "velocity", p.velocity, origin);
-  p.spin = vector3(j, "spin", p.spin, origin);
-  p.restitution = number(j, "restitution", p.restitution, origin);
-  p.friction = number(j, "friction", p.friction, origin);  // absent: no slip
-  const std::string smooth = text(j, "smooth", "auto", origin);
-  if (smooth != "auto" && smooth != "on" && smooth != "off")
-    throw Error(origin + ": smooth must be \"auto\", \"on\" or \"off\", got \"" + smooth + "\"");
-  p.smooth = smooth == "on" ? SmoothMode::on : smooth == "off" ? SmoothMode::off : SmoothMode::automatic;
+  for (const ParamInfo& info : param_table())  // absent: the default (friction: no slip)
+    if ((info.uses & in_scenario) && j.contains(info.name)) read_param(j, info, p, origin);
   if (!(s.density > 0) || !std::isfinite(s.density))
     throw Error(origin + ": density must be a finite positive number");
   try {

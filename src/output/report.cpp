@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "../model/param_json.hpp"
+
 namespace repose {
 
 namespace {
@@ -50,22 +52,11 @@ std::string settle_summary_json(const Particle& particle, const SettleParams& pa
                     {vec_json(particle.mass.inertia.row(0)), vec_json(particle.mass.inertia.row(1)),
                      vec_json(particle.mass.inertia.row(2))}},
                    {"smooth", r.smooth}};
-  j["parameters"] = {
-      {"gravity", params.gravity},
-      {"damping", params.damping},
-      {"integrator", to_string(params.integrator)},
-      {"dt", r.dt},
-      {"tolerance", params.tolerance},
-      {"contact_threshold", params.contact_threshold},
-      {"line_threshold", params.line_threshold},
-      {"drop_height", params.drop_height},
-      {"drop_speed", params.drop_speed},
-      {"velocity", vec_json(params.velocity)},
-      {"spin", vec_json(params.spin)},
-      {"restitution", params.restitution},
-      // JSON has no infinity: no slip is written as null
-      {"friction", std::isinf(params.friction) ? nlohmann::json(nullptr) : nlohmann::json(params.friction)},
-      {"initial_orientation", quat_json(initial)}};
+  nlohmann::json& parameters = j["parameters"];
+  for (const ParamInfo& info : param_table())
+    if (info.uses & in_summary) parameters[info.name] = param_json(info, params);
+  parameters["dt"] = r.dt;  // the step the run used: "0: automatic" resolved
+  parameters["initial_orientation"] = quat_json(initial);
   j["status"] = to_string(r.status);
   j["time_to_rest"] = r.status == Status::rest ? nlohmann::json(r.time) : nlohmann::json(nullptr);
   j["time"] = r.time;

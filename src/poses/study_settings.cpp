@@ -2,8 +2,9 @@
 
 #include <cmath>
 
+#include "../model/param_json.hpp"
 #include "repose/error.hpp"
-#include "repose/sim/settle.hpp"
+#include "repose/model/param_table.hpp"
 
 namespace repose {
 
@@ -11,66 +12,64 @@ namespace {
 
 using nlohmann::json;
 
-const char* smooth_mode_name(SmoothMode mode) {
-  return mode == SmoothMode::on ? "on" : mode == SmoothMode::off ? "off" : "auto";
+const char* study_key(const ParamInfo& info) { return info.study_key ? info.study_key : info.name; }
+
+// What files written before a parameter existed were computed with: the defaults (no rebound, no slip),
+// but the paper's integrator, which came before the adaptive one.
+SettleParams before_the_field() {
+  SettleParams p;
+  p.integrator = Integrator::paper;
+  return p;
 }
 
-SmoothMode parse_smooth_mode(const std::string& s) {
-  if (s == "on") return SmoothMode::on;
-  if (s == "off") return SmoothMode::off;
-  if (s == "auto") return SmoothMode::automatic;
-  throw Error("unknown smooth mode '" + s + "'");
+// An integer, checked first: nlohmann converts a floating-point value with a plain cast, undefined behaviour
+// when it does not fit.
+template <class Int>
+Int whole_number(const json& v, const std::string& name) {
+  if (!v.is_number_integer()) throw Error(name + ": malformed poses result file (expected an integer)");
+  return v.get<Int>();
+}
+
+// One parameter from `v` (what settings_json wrote): null is infinity where that is valid.
+void read_param(const json& v, const ParamInfo& info, SettleParams& p, const std::string& name) {
+  std::visit(Overloaded{[&](double SettleParams::*m) {
+                          p.*m = v.is_null() && info.range.allows_infinity() ? INFINITY : v.get<double>();
+                        },
+                        [&](long SettleParams::*m) { p.*m = whole_number<long>(v, name); },
+                        [&](int SettleParams::*m) { p.*m = whole_number<int>(v, name); },
+                        [&](Vec3 SettleParams::*m) {
+                          p.*m = Vec3(v.at(0).get<double>(), v.at(1).get<double>(), v.at(2).get<double>());
+                        },
+                        [&](const ParamChoice& c) { c.set(p, v.get<std::string>()); }},
+             info.member);
 }
 
 }  // namespace
 
 json settings_json(const PosesStudy& s) {
-  const SettleParams& p = s.params;
-  return {{"gravity", p.gravity},
-          {"damping", p.damping},
-          {"integrator", to_string(p.integrator)},
-          {"dt", p.dt},
-          {"tolerance", p.tolerance},
-          {"contact_threshold", p.contact_threshold},
-          {"line_threshold", p.line_threshold},
-          {"smooth_mode", smooth_mode_name(p.smooth)},
-          {"drop_height", p.drop_height},
-          {"drop_speed", p.drop_speed},
-          {"restitution", p.restitution},
-          {"friction", std::isinf(p.friction) ? json(nullptr) : json(p.friction)},  // null: no slip
-          {"velocity_max", s.toss.velocity_max},
-          {"spin_max", s.toss.spin_max},
-          {"max_time", p.max_time},
-          {"max_steps", p.max_steps},
-          {"decide_early", s.decide_early},
-          {"persistence", s.catalog.persistence}};
+  json j;
+  for (const ParamInfo& info : param_table())
+    if (info.uses & in_study) j[study_key(info)] = param_json(info, s.params);
+  j["velocity_max"] = s.toss.velocity_max;
+  j["spin_max"] = s.toss.spin_max;
+  j["decide_early"] = s.decide_early;
+  j["persistence"] = s.catalog.persistence;
+  return j;
 }
 
 void read_settings(const json& set, PosesStudy& s, const std::string& name) {
-  SettleParams& p = s.params;
-  p.gravity = set.at("gravity").get<double>();
-  p.damping = set.at("damping").get<double>();
-  p.dt = set.at("dt").get<double>();
-  // Files written before the adaptive integrator existed were computed with the paper's.
-  p.integrator = parse_integrator(set.value("integrator", std::string("paper")));
-  p.tolerance = set.value("tolerance", p.tolerance);
-  p.contact_threshold = set.at("contact_threshold").get<double>();
-  p.line_threshold = set.at("line_threshold").get<double>();
-  p.smooth = parse_smooth_mode(set.at("smooth_mode").get<std::string>());
-  p.drop_height = set.at("drop_height").get<double>();
-  p.drop_speed = set.at("drop_speed").get<double>();
-  // Files written before tosses existed: drops from rest, no rebound.
-  p.restitution = set.value("restitution", 0.0);
-  p.friction =
-      set.contains("friction") && !set.at("friction").is_null() ? set.at("friction").get<double>() : INFINITY;
+  static const SettleParams before = before_the_field();
+  for (const ParamInfo& info : param_table()) {
+    if (!(info.uses & in_study)) continue;
+    const char* key = study_key(info);
+    if ((info.uses & study_optional) && !set.contains(key))
+      copy_param(info, before, s.params);
+    else
+      read_param(set.at(key), info, s.params, name);  // missing: nlohmann's out_of_range
+  }
+  // Files written before tosses existed: drops from rest.
   s.toss.velocity_max = set.value("velocity_max", 0.0);
   s.toss.spin_max = set.value("spin_max", 0.0);
-  p.max_time = set.at("max_time").get<double>();
-  // An integer, checked first: nlohmann converts a floating-point value with a plain cast, undefined
-  // behaviour when it does not fit.
-  if (!set.at("max_steps").is_number_integer())
-    throw Error(name + ": malformed poses result file (expected an integer)");
-  p.max_steps = set.at("max_steps").get<long>();
   s.decide_early = set.at("decide_early").get<bool>();
   s.catalog.persistence = set.at("persistence").get<double>();
 }

@@ -30,6 +30,8 @@ enum class Integrator {
   adaptive,  ///< Dormand–Prince 5(4) with error control and dense output; events located on the dense output
 };
 
+/// Every field is an entry of the parameter table (param_table.hpp), which names it for the CLI, scenario
+/// files, JSON and Python and holds its range: a new field needs an entry there.
 struct SettleParams {
   double gravity = 9.81;  ///< magnitude of g, length/time², along −z
   double damping = 0.0;   ///< C in Eq 4, torque per angular velocity (mass·length²/time)
@@ -65,12 +67,17 @@ struct SettleParams {
 const char* to_string(Integrator integrator);
 Integrator parse_integrator(const std::string& name);
 
+/// "auto" / "on" / "off", and back (throws repose::Error for any other name).
+const char* to_string(SmoothMode mode);
+SmoothMode parse_smooth_mode(const std::string& name);
+
 /// Whether a run's touches are rigid-body impacts (restitution, friction, momentum carried over) rather than
 /// the paper's (translation stops at the first touch, §2.1): a toss with spin or horizontal velocity, or E >
 /// 0.
 bool uses_impacts(const SettleParams& params);
 
-/// Throws repose::Error naming the offending parameter if any is non-finite or out of range.
+/// Throws repose::Error naming the offending parameter if any is non-finite or out of its range in the
+/// parameter table ("parameter NAME must be ...").
 void validate(const SettleParams& params);
 
 }  // namespace repose

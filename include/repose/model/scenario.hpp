@@ -8,10 +8,9 @@
 //   density                  mass / length³ (default 1)
 //   units                    "si" | "cgs" (default "si"): sets gravity 9.81 m/s² or 981 cm/s²
 //   orientation              orientation spec, e.g. "axis-angle:1,0,0,1.106" (default "identity")
-//   damping, dt, contact_threshold, line_threshold, drop_height, drop_speed, max_time, restitution,
-//   friction                 numbers, as SettleParams (friction absent: no slip)
-//   velocity, spin           [x, y, z], as SettleParams (a toss)
-//   smooth                   "auto" | "on" | "off"
+//   the parameters           each entry of param_table.hpp marked in_scenario, under its name: numbers
+//                            (damping, dt, ..., friction), [x, y, z] (velocity, spin: a toss) or names
+//                            (integrator, smooth); absent: the default (friction: no slip)
 //   mesh_units | scale       the mesh file's length unit ("mm" | "cm" | "m" | "in", converted to the run's
 //                            units) or a factor on every coordinate (default 1); not both
 //   inertia                  "exact" | "convex" | "shell" (default "exact")
