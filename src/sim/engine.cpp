@@ -82,18 +82,18 @@ bool Engine::advance_to(double time) {
 }
 
 Status Engine::status() const {
-  return std::visit(Overloaded{[](const Rest&) { return Status::rest; },
-                               [](const Stopped& s) { return s.why; },
-                               [](const auto&) { return Status::running; }},
-                    phase_);
+  return std::visit(
+      Overloaded{[](const Rest&) { return Status::rest; }, [](const Stopped& s) { return s.why; },
+                 [](const auto&) { return Status::running; }},
+      phase_);
 }
 
 double Engine::kinetic_energy() const {
-  return std::visit(Overloaded{[](const Flight& f) { return f.kinetic_energy(); },
-                               [](const Contact& c) { return c.kinetic_energy(); },
-                               [](const Rest&) { return 0.0; },
-                               [](const Stopped& s) { return s.kinetic_energy; }},
-                    phase_);
+  return std::visit(
+      Overloaded{[](const Flight& f) { return f.kinetic_energy(); },
+                 [](const Contact& c) { return c.kinetic_energy(); }, [](const Rest&) { return 0.0; },
+                 [](const Stopped& s) { return s.kinetic_energy; }},
+      phase_);
 }
 
 Sample Engine::sample() const {

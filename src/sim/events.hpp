@@ -20,10 +20,10 @@
 #include <array>
 #include <boost/math/tools/toms748_solve.hpp>
 #include <climits>
-#include <cstddef>
-#include <type_traits>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <type_traits>
 
 namespace repose::sim {
 
@@ -43,10 +43,10 @@ inline constexpr int kMaxIntervals = 4096;
 inline constexpr int kMaxDepth = 256;
 
 struct EventSearch {
-  double resolution = 0;          ///< an interval this short (time) is a bracket, or is clear
-  int max_halvings = INT_MAX;     ///< ... as is one halved this many times
+  double resolution = 0;       ///< an interval this short (time) is a bracket, or is clear
+  int max_halvings = INT_MAX;  ///< ... as is one halved this many times
   int max_intervals = kMaxIntervals;
-  bool hi_holds_known = false;    ///< the event is known to hold at the search's upper end
+  bool hi_holds_known = false;  ///< the event is known to hold at the search's upper end
   /// Stop at the first instant examined at which the event holds (an event that may hold only for a
   /// moment: any instant of it will do), instead of bracketing where it begins.
   bool any_instant = false;
@@ -54,9 +54,9 @@ struct EventSearch {
 
 struct Located {
   enum class Kind {
-    none,       ///< the event holds nowhere in the interval (or only at an instant shorter than the resolution)
-    bracket,    ///< it begins in (lo, hi]: it holds at hi and not at lo
-    instant,    ///< it holds at lo (= hi), an instant examined (EventSearch::any_instant)
+    none,     ///< the event holds nowhere in the interval (or only at an instant shorter than the resolution)
+    bracket,  ///< it begins in (lo, hi]: it holds at hi and not at lo
+    instant,  ///< it holds at lo (= hi), an instant examined (EventSearch::any_instant)
     exhausted,  ///< the search hit max_intervals; lo is where it would have gone on
   };
   Kind kind = Kind::none;

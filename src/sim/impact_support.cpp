@@ -70,7 +70,8 @@ bool others_separate(const SwitchState& impact, const std::vector<Touch>& touchi
   return true;
 }
 
-SupportChoice choose_from_touching(const SwitchState& impact, const std::vector<Touch>& touching, const Vec2& g) {
+SupportChoice choose_from_touching(const SwitchState& impact, const std::vector<Touch>& touching,
+                                   const Vec2& g) {
   const std::vector<Vec2> poly = touching_polygon(touching, impact.touch_tol);
   const ClosestFeature nearest = closest_feature(poly, g);
   std::vector<ClosestFeature> candidates = {nearest};
@@ -106,8 +107,8 @@ SupportChoice choose_from_touching(const SwitchState& impact, const std::vector<
   return c;
 }
 
-SupportChoice choose_smooth(const SwitchState& impact, const std::vector<Touch>& touching, const Touch& current,
-                            const Vec2& g) {
+SupportChoice choose_smooth(const SwitchState& impact, const std::vector<Touch>& touching,
+                            const Touch& current, const Vec2& g) {
   const Touch* lowest = &current;
   double deepest = INFINITY;
   for (const Touch& t : touching)

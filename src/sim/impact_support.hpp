@@ -57,13 +57,14 @@ bool others_separate(const SwitchState& impact, const std::vector<Touch>& touchi
 /// order, then corners) that lets every other point separate. Failing that, the motion stops (`stop`) and
 /// the same search is made from rest, where gravity alone decides; failing that too (the centre of mass over
 /// the polygon), the nearest edge from rest, which keeps both its ends on the wall.
-SupportChoice choose_from_touching(const SwitchState& impact, const std::vector<Touch>& touching, const Vec2& g);
+SupportChoice choose_from_touching(const SwitchState& impact, const std::vector<Touch>& touching,
+                                   const Vec2& g);
 
 /// A smooth particle turns about its single lowest point: the lowest touching point other than the current
 /// support's vertex `current` (the most recent touch; of equal heights the first listed), else that vertex;
 /// if that would drive another touching point into the wall (rocking on an edge of the discretised surface),
 /// as choose_from_touching.
-SupportChoice choose_smooth(const SwitchState& impact, const std::vector<Touch>& touching, const Touch& current,
-                            const Vec2& g);
+SupportChoice choose_smooth(const SwitchState& impact, const std::vector<Touch>& touching,
+                            const Touch& current, const Vec2& g);
 
 }  // namespace repose::sim

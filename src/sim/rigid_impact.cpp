@@ -17,7 +17,7 @@ constexpr int kMaxSteps = 100000;
 // where every step is exact).
 constexpr int kStepsPerImpulse = 256;
 constexpr int kResumeHalvings = 200;  // c is bracketed to round-off long before
-constexpr int kMaxSweeps = 10000;  // Gauss–Seidel sweeps of impulse_centre
+constexpr int kMaxSweeps = 10000;     // Gauss–Seidel sweeps of impulse_centre
 
 Mat3 skew(const Vec3& a) {
   Mat3 m;
@@ -33,7 +33,9 @@ Vec2 resume_direction(const Eigen::Matrix2d& ktt, const Vec2& ktn, double mu) {
   EventSearch search;
   search.max_halvings = kResumeHalvings;
   search.hi_holds_known = true;
-  const double hi = locate(0.0, ktn.norm(), search, [&](double c) { return !(s(c).norm() > 1); }, monotone).hi;
+  const double hi = locate(
+                        0.0, ktn.norm(), search, [&](double c) { return !(s(c).norm() > 1); }, monotone)
+                        .hi;
   return s(hi).normalized();
 }
 
@@ -63,8 +65,8 @@ ImpactOutcome collide(double mass, const Mat3& inertia, const Vec3& r, const Mot
   const Vec2 ktn = K.block<2, 1>(0, 2);
   const Vec2 stuck_rate = -ktt.ldlt().solve(ktn);  // dP_t/dp that keeps a stuck point stuck
   const double e = law.restitution, mu = law.friction;
-  const double p_scale = -u0.z() / K(2, 2);  // the frictionless compression impulse
-  const double u_tiny = tol::kTinySpeed * u0.norm();   // speeds below this are zero (round-off of u0)
+  const double p_scale = -u0.z() / K(2, 2);           // the frictionless compression impulse
+  const double u_tiny = tol::kTinySpeed * u0.norm();  // speeds below this are zero (round-off of u0)
 
   auto velocity = [&](const Vec3& P) { return Vec3(u0 + K * P); };
   Vec3 P = Vec3::Zero();

@@ -41,9 +41,9 @@ struct Run {
   const SettleParams params;
   const Body body;  ///< mass, inertia, gravity, damping
   const Tolerances tol;
-  const bool smooth;    ///< the particle is treated as smooth (one support point, its own rest rule)
-  const bool adaptive;  ///< Integrator::adaptive (else the paper's fixed step)
-  const bool trace;     ///< debugging aid: one line per contact update on stderr (REPOSE_TRACE set)
+  const bool smooth;         ///< the particle is treated as smooth (one support point, its own rest rule)
+  const bool adaptive;       ///< Integrator::adaptive (else the paper's fixed step)
+  const bool trace;          ///< debugging aid: one line per contact update on stderr (REPOSE_TRACE set)
   const double hull_radius;  ///< largest distance of a hull vertex from the centre of mass
 
   double t = 0;

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "repose/error.hpp"
 #include "engine.hpp"
+#include "repose/error.hpp"
 
 namespace repose {
 
@@ -91,7 +91,8 @@ SettleResult Settler::run(const std::function<void(const Sample&)>& observer, do
     const long steps_before = engine_->run().steps;
     const double t_before = engine_->run().t;
     step();
-    if (observer && (engine_->run().steps != steps_before || engine_->run().t != t_before)) observer(sample());
+    if (observer && (engine_->run().steps != steps_before || engine_->run().t != t_before))
+      observer(sample());
   }
   return result();
 }

@@ -29,8 +29,9 @@ Tolerances make_tolerances(const Particle& particle, const SettleParams& params)
   if (uses_impacts(params) || params.velocity != Vec3::Zero()) {
     // A toss rises first, and its bounces take at most (1 + E)/(1 − E) times its first fall.
     const double up = params.velocity.z() - params.drop_speed;
-    const double bounces = std::min(tol::kMaxBounceFactor, (1 + params.restitution) /
-                                                               std::max(tol::kMinOneMinusE, 1 - params.restitution));
+    const double bounces =
+        std::min(tol::kMaxBounceFactor,
+                 (1 + params.restitution) / std::max(tol::kMinOneMinusE, 1 - params.restitution));
     fall_time = (std::abs(up) + std::sqrt(up * up + 2 * g * params.drop_height)) / g * bounces;
   }
   t.max_time = params.max_time > 0 ? params.max_time : tol::kMaxTime * t.time_scale + fall_time;

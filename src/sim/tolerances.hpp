@@ -13,7 +13,7 @@ namespace repose::sim {
 
 namespace tol {
 // ---- lengths, × L
-inline constexpr double kTouch = 1e-9;  ///< a vertex this close to the wall is on it (touching set)
+inline constexpr double kTouch = 1e-9;   ///< a vertex this close to the wall is on it (touching set)
 inline constexpr double kEvent = 1e-12;  ///< a vertex this far below where it started has pierced the wall
 /// Below-the-wall is measured from where a vertex started, down to at most this many event tolerances, so
 /// a vertex that already touches within round-off does not re-trigger at once.
@@ -29,23 +29,24 @@ inline constexpr double kBalanceOffset = 1e-8;
 inline constexpr double kReachSlack = 1e-6;
 
 // ---- times, × τ
-inline constexpr double kPaperStep = 1e-3;        ///< the paper's fixed step unless set (its Fig 3 converges)
-inline constexpr double kAdaptiveMaxStep = 0.2;   ///< the adaptive step's longest: decisions re-checked then
-inline constexpr double kFirstStep = 0.05;        ///< the adaptive integrator's first trial step from rest
+inline constexpr double kPaperStep = 1e-3;       ///< the paper's fixed step unless set (its Fig 3 converges)
+inline constexpr double kAdaptiveMaxStep = 0.2;  ///< the adaptive step's longest: decisions re-checked then
+inline constexpr double kFirstStep = 0.05;       ///< the adaptive integrator's first trial step from rest
 /// The impact rule's "pulled back within a tenth of a step" (impact_support.cpp) is on the paper's step;
 /// the adaptive integrator's steps have no fixed length, so it uses this fixed time scale instead.
 inline constexpr double kReboundWindow = 0.05;
 inline constexpr double kSampleInterval = 1e-3;  ///< a time series' spacing unless set (adaptive runs)
-inline constexpr double kMaxTime = 2000;  ///< the automatic time limit, beyond the fall or the tosses' flights
+inline constexpr double kMaxTime =
+    2000;  ///< the automatic time limit, beyond the fall or the tosses' flights
 /// A toss's bounces take at most (1 + E)/(1 − E) times its first fall (a ball's series); the factor is
 /// kept within [1, kMaxBounceFactor] and 1 − E at least kMinOneMinusE for the automatic time limit.
 inline constexpr double kMaxBounceFactor = 1e3;
 inline constexpr double kMinOneMinusE = 1e-3;
 
 // ---- speeds, energies, rates
-inline constexpr double kSpeed = 1e-9;   ///< × sqrt(g·L): a contact point slower than this is not moving
-inline constexpr double kAccel = 1e-9;   ///< × g: a contact point's acceleration below this is none
-inline constexpr double kStill = 1e-9;   ///< × m·g·L: kinetic energy below this is no motion (edge balances)
+inline constexpr double kSpeed = 1e-9;  ///< × sqrt(g·L): a contact point slower than this is not moving
+inline constexpr double kAccel = 1e-9;  ///< × g: a contact point's acceleration below this is none
+inline constexpr double kStill = 1e-9;  ///< × m·g·L: kinetic energy below this is no motion (edge balances)
 inline constexpr double kAxisRate = 1e-12;  ///< × sqrt(g/L): an angular velocity below this has no axis
 /// × tolerance × m·g·L: the adaptive integrator's energy error allowed for in the bounds on how far a step
 /// can turn the particle (measured at most 5.2 × tolerance × m·g·L).
@@ -82,23 +83,23 @@ inline constexpr double kQuaternionNorm = 1e-12;
 
 /// One run's tolerances and scales, built from L, τ and the parameters.
 struct Tolerances {
-  double length = 0;          ///< L
-  double time_scale = 0;      ///< τ = sqrt(L/g)
-  double band = 0;            ///< ε: points within it are contacts (Algorithm 1), length
-  double touch = 0;           ///< a vertex this close to the wall is on it, length
-  double event = 0;           ///< a vertex this far below its start has pierced the wall, length
-  double rss_threshold = 0;   ///< Algorithm 1's line/surface threshold, length²
-  double speed = 0;           ///< a contact point slower than this is not moving, length/time
-  double still_energy = 0;    ///< kinetic energy below this is no motion, mass·length²/time²
-  double axis_rate = 0;       ///< an angular velocity below this has no axis, rad/time
-  double balance_offset = 0;  ///< how far beyond an edge balance the centre of mass is put, length
-  double reach_slack = 0;     ///< see tol::kReachSlack, length
-  double energy_margin = 0;   ///< the integrator's energy error allowed for, mass·length²/time²
-  double dt = 0;              ///< paper: the step; adaptive: the longest step (time)
-  double first_step = 0;      ///< the adaptive integrator's first trial step from rest (time)
+  double length = 0;           ///< L
+  double time_scale = 0;       ///< τ = sqrt(L/g)
+  double band = 0;             ///< ε: points within it are contacts (Algorithm 1), length
+  double touch = 0;            ///< a vertex this close to the wall is on it, length
+  double event = 0;            ///< a vertex this far below its start has pierced the wall, length
+  double rss_threshold = 0;    ///< Algorithm 1's line/surface threshold, length²
+  double speed = 0;            ///< a contact point slower than this is not moving, length/time
+  double still_energy = 0;     ///< kinetic energy below this is no motion, mass·length²/time²
+  double axis_rate = 0;        ///< an angular velocity below this has no axis, rad/time
+  double balance_offset = 0;   ///< how far beyond an edge balance the centre of mass is put, length
+  double reach_slack = 0;      ///< see tol::kReachSlack, length
+  double energy_margin = 0;    ///< the integrator's energy error allowed for, mass·length²/time²
+  double dt = 0;               ///< paper: the step; adaptive: the longest step (time)
+  double first_step = 0;       ///< the adaptive integrator's first trial step from rest (time)
   double flight_max_step = 0;  ///< a spinning flight's longest step (time)
-  double rebound_window = 0;  ///< the impact rule's step (impact_support.hpp): dt, or 0.05·τ (adaptive)
-  double max_time = 0;        ///< the run's time limit (time)
+  double rebound_window = 0;   ///< the impact rule's step (impact_support.hpp): dt, or 0.05·τ (adaptive)
+  double max_time = 0;         ///< the run's time limit (time)
 };
 
 /// The tolerances of a run of `particle` (mass m) with `params` (validated).

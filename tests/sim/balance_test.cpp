@@ -1,6 +1,7 @@
 // Unstable balances are not rests (issue 12, "no snaps"): a particle started exactly on one, with no motion,
-// is tipped off by the documented rule (src/sim/tolerances.hpp, tol::kBalanceOffset: its centre of mass moved 1e-8·L beyond
-// the edge) and falls from there as an inverted pendulum, whatever its surface rules (faceted or smooth).
+// is tipped off by the documented rule (src/sim/tolerances.hpp, tol::kBalanceOffset: its centre of mass moved
+// 1e-8·L beyond the edge) and falls from there as an inverted pendulum, whatever its surface rules (faceted
+// or smooth).
 #include <gtest/gtest.h>
 
 #include <cmath>

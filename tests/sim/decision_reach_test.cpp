@@ -1,9 +1,10 @@
-// The contact decisions' reach (src/sim/phases/contact_decisions.cpp) is a bound: a pose turned about the support by less
-// than the reach gives the same decisions (contact type, hold, the paper's stability test, a line's support)
-// for the same contact set, so a step that cannot turn that far is not checked inside. The oracle is the
-// decisions themselves, evaluated at the turned pose; the reach is only the claim. White box: the engine
-// (sim::Engine) is driven step by step through real drops, and at each pose of its contact phase the turned
-// poses are tried, the last of them at 0.999 of the reach, where a reach too long by any factor shows.
+// The contact decisions' reach (src/sim/phases/contact_decisions.cpp) is a bound: a pose turned about the
+// support by less than the reach gives the same decisions (contact type, hold, the paper's stability test, a
+// line's support) for the same contact set, so a step that cannot turn that far is not checked inside. The
+// oracle is the decisions themselves, evaluated at the turned pose; the reach is only the claim. White box:
+// the engine (sim::Engine) is driven step by step through real drops, and at each pose of its contact phase
+// the turned poses are tried, the last of them at 0.999 of the reach, where a reach too long by any factor
+// shows.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -103,7 +104,8 @@ void check_drops(const std::string& spec, int drops, Tally& tally) {
       const std::vector<int> set = contact_set_at(run, s, run.q);
       ++tally.poses;
       for (int j = 0; j < 2; ++j) {
-        Vec3 axis = s.support().line ? s.support().axis : Vec3(normal(random), normal(random), normal(random));
+        Vec3 axis =
+            s.support().line ? s.support().axis : Vec3(normal(random), normal(random), normal(random));
         axis = (j % 2 ? 1.0 : -1.0) * axis.normalized();
         // Within the reach: the same decisions (the turn's angle at random, and just short of the reach).
         for (double fraction : {uniform(random), 0.999}) {

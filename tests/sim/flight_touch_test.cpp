@@ -2,8 +2,9 @@
 // step at which a hull vertex reaches the wall. Oracle, computed here from the flight's own motion (the
 // centre of mass on its parabola, the orientation from the integrator's dense output): a scan of the step at
 // 4,000 instants finds no vertex below the wall before the located touch, and at the touch the lowest vertex
-// is on the wall. White box: the engine (sim::Engine) is driven step by step through tossed drops of irregular
-// grains with lively rebounds (E = 0.9), which make many short flights, each starting where an impact ended.
+// is on the wall. White box: the engine (sim::Engine) is driven step by step through tossed drops of
+// irregular grains with lively rebounds (E = 0.9), which make many short flights, each starting where an
+// impact ended.
 #include <gtest/gtest.h>
 
 #include <algorithm>

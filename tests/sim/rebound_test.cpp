@@ -279,8 +279,8 @@ namespace {
 // points are now struck together, plastically, and the motion stops (impact_support.hpp). Drop 2199 lands
 // spinning about the vertical: its surface contact took the previous rotation axis, near vertical, as the
 // hinge, and hung on one touching point while the damped spin died out, until the time limit: the hinge is
-// now that axis's direction on the wall (src/sim/phases/contact_support.cpp). The oracle: each rests, flush on a stable face,
-// without overlap and without gaining energy, in a fraction of the limits.
+// now that axis's direction on the wall (src/sim/phases/contact_support.cpp). The oracle: each rests, flush
+// on a stable face, without overlap and without gaining energy, in a fraction of the limits.
 TEST(Rebound, TossedDiceThatStalledNowRest) {
   MeshOptions mesh;
   mesh.center_of_mass = Vec3(0.0197607689, 0.0421846323, 0.0115263518);

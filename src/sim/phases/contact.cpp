@@ -48,7 +48,8 @@ double Contact::kinetic_energy() const { return rotational_energy(run_.body, sup
 void Contact::heights(const Quat& qq, std::vector<double>& out) const {
   const Vec3 r3 = qq.toRotationMatrix().row(2).transpose();
   const auto& verts = run_.particle.hull.vertices;
-  for (std::size_t k = 0; k < verts.size(); ++k) out[k] = support_.world.z() + r3.dot(verts[k] - support_.body);
+  for (std::size_t k = 0; k < verts.size(); ++k)
+    out[k] = support_.world.z() + r3.dot(verts[k] - support_.body);
 }
 
 }  // namespace repose::sim

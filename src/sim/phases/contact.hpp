@@ -80,7 +80,8 @@ class Contact {
   /// The height above the wall of hull vertex k at the orientation whose rotation matrix has third row r3,
   /// about the current support (the one expression every height test uses, so that they agree to the bit).
   double height_of(const Vec3& r3, int k) const {
-    return support_.world.z() + r3.dot(run_.particle.hull.vertices[static_cast<std::size_t>(k)] - support_.body);
+    return support_.world.z() +
+           r3.dot(run_.particle.hull.vertices[static_cast<std::size_t>(k)] - support_.body);
   }
 
  private:
@@ -173,20 +174,20 @@ class Contact {
   Support support_;
   int support_vertex_ = -1;
   Rotation rot_;
-  double reach_radius_ = 0;  // largest distance of a hull vertex from the current support
-  double min_moment_ = 1;    // adaptive: the smallest moment of inertia about the current support
-  bool finishing_ = false;   // the paper's stability test has passed (at record.stable_time)
+  double reach_radius_ = 0;   // largest distance of a hull vertex from the current support
+  double min_moment_ = 1;     // adaptive: the smallest moment of inertia about the current support
+  bool finishing_ = false;    // the paper's stability test has passed (at record.stable_time)
   bool band_entered_ = true;  // a point entered the ε band in the last step (or contact just began)
   bool has_prev_axis_ = false;
   Vec3 prev_axis_ = Vec3::UnitX();
   // The adaptive integrator and where its stepping stands.
   std::optional<RotationIntegrator> integrator_;
   struct AdaptiveStep {
-    bool restart = true;    // the support or the motion changed, so the integrator starts afresh
-    bool inside = false;    // inside an integrator step (stopped in it by advance_to())
-    bool resume = false;    // the next step resumes the integrator's last one (after an event)
-    double restart_step = 0;          // the first trial step of a restart (0: from rest, a short one)
-    double end = 0;                   // the current step's first event, or its end
+    bool restart = true;      // the support or the motion changed, so the integrator starts afresh
+    bool inside = false;      // inside an integrator step (stopped in it by advance_to())
+    bool resume = false;      // the next step resumes the integrator's last one (after an event)
+    double restart_step = 0;  // the first trial step of a restart (0: from rest, a short one)
+    double end = 0;           // the current step's first event, or its end
     bool event = false, band_entered = false;
   } adaptive_;
   // The contact decisions at the current step's start, when known.
@@ -207,10 +208,10 @@ class Contact {
   std::vector<double> next_z_;
   std::vector<int> next_contact_, decision_contact_, decision_touching_, decision_set_;
   std::vector<std::pair<double, double>> margin_samples_;  // brief_stability_pass's margins by time
-  std::vector<char> walk_visited_;   // of hull size, all zero between uses
-  std::vector<int> walk_out_;        // a walk's vertices, then a step's reachable vertices
+  std::vector<char> walk_visited_;                         // of hull size, all zero between uses
+  std::vector<int> walk_out_;           // a walk's vertices, then a step's reachable vertices
   std::vector<std::uint64_t> id_bits_;  // of hull size in bits, all zero between uses (sort_vertex_ids)
-  int lowest_vertex_ = 0;              // the lowest hull vertex at the last walk (its start)
+  int lowest_vertex_ = 0;               // the lowest hull vertex at the last walk (its start)
 };
 
 }  // namespace repose::sim

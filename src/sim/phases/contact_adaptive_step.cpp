@@ -122,10 +122,10 @@ void Contact::adaptive_step() {
       break;
     }
   }
-  decision_cached_ = keep && !step.restart && contact_ == decision_contact_ && touching_ == decision_touching_ &&
-                     support_vertex_ == vertex_before && support_.line == support_before.line &&
-                     support_.axis == support_before.axis && support_.world == support_before.world &&
-                     finishing_ == finishing_before;
+  decision_cached_ = keep && !step.restart && contact_ == decision_contact_ &&
+                     touching_ == decision_touching_ && support_vertex_ == vertex_before &&
+                     support_.line == support_before.line && support_.axis == support_before.axis &&
+                     support_.world == support_before.world && finishing_ == finishing_before;
 }
 
 // Takes one integrator step from t, or resumes the last one after an event that changed no support, and
@@ -184,8 +184,8 @@ double Contact::locate_step_event(double lo, double hi) {
   search.max_halvings = kMaxHalvings;
   search.hi_holds_known = true;
   const Located at = locate(
-      lo, hi, search, [&](double s) { return adaptive_event_at(integrator_->orientation_at(s)).any; }, monotone,
-      [&](double s) { return event_margin(integrator_->orientation_at(s)); });
+      lo, hi, search, [&](double s) { return adaptive_event_at(integrator_->orientation_at(s)).any; },
+      monotone, [&](double s) { return event_margin(integrator_->orientation_at(s)); });
   const EventFlags flags = adaptive_event_at(integrator_->orientation_at(at.hi));
   adaptive_.band_entered = !flags.pierced && flags.entered && !finishing_;
   adaptive_.end = flags.pierced ? at.lo : at.hi;

@@ -57,8 +57,9 @@ Contact::Decision Contact::decision_at(const Quat& qq, bool with_reach, std::spa
   d.hold = hold_corners >= 3 && hold_margin > -run.tol.touch;  // touching_points_hold(g)
   const double stability = !run.smooth && !finishing_ ? stability_margin(contact_points_, g) : -INFINITY;
   d.stable = stability > 0;
-  const LineSupport line =
-      support_.line ? line_support(pose, set, contact_points_, support_vertex_, support_.axis) : LineSupport{};
+  const LineSupport line = support_.line
+                               ? line_support(pose, set, contact_points_, support_vertex_, support_.axis)
+                               : LineSupport{};
   d.line_holds = support_.line && line.holds;
   if (with_reach) {
     const double slack = run.tol.reach_slack;
@@ -70,14 +71,16 @@ Contact::Decision Contact::decision_at(const Quat& qq, bool with_reach, std::spa
       r_max = std::max(r_max, r);
       r2_sum += r * r;
     }
-    for (int k : touching_) r_touch = std::max(r_touch, (verts[static_cast<std::size_t>(k)] - support_.body).norm());
+    for (int k : touching_)
+      r_touch = std::max(r_touch, (verts[static_cast<std::size_t>(k)] - support_.body).norm());
     auto reach = [&](double room, double rate) {
       const double r = (room - slack) / rate;
       return r > 0 ? r : 0.0;  // (NaN too: no reach)
     };
     d.reach_of.fill(INFINITY);
     if (!run.smooth && set.size() >= 2)
-      d.reach_of[0] = reach(std::abs(std::sqrt(fit.rss) - std::sqrt(run.tol.rss_threshold)), std::sqrt(r2_sum));
+      d.reach_of[0] =
+          reach(std::abs(std::sqrt(fit.rss) - std::sqrt(run.tol.rss_threshold)), std::sqrt(r2_sum));
     // A polygon of fewer than three corners (collinear within the hull's tolerance) holds nothing until the
     // centre of mass's footprint comes within the touching tolerance of it.
     if (touching_.size() >= 3)
@@ -98,7 +101,8 @@ bool Contact::contact_set_holds(double arc) const {
   if (!decisions_use_own_set()) return true;
   const double level = run_.tol.band + run_.tol.touch, slack = run_.tol.reach_slack;
   for (int k : event_candidates_)
-    if (std::abs(z_[k] - level) - slack <= arc * (run_.particle.hull.vertices[static_cast<std::size_t>(k)] - support_.body).norm())
+    if (std::abs(z_[k] - level) - slack <=
+        arc * (run_.particle.hull.vertices[static_cast<std::size_t>(k)] - support_.body).norm())
       return false;
   return true;
 }
@@ -179,7 +183,8 @@ double Contact::brief_stability_pass(double t0, double t1) {
   if (run_.smooth || finishing_ || contact_.size() < 3) return -1;
   const auto& verts = run_.particle.hull.vertices;
   double radius = support_.body.norm();  // the centre of mass's distance from the pivot
-  for (int k : contact_) radius = std::max(radius, (verts[static_cast<std::size_t>(k)] - support_.body).norm());
+  for (int k : contact_)
+    radius = std::max(radius, (verts[static_cast<std::size_t>(k)] - support_.body).norm());
   const double lipschitz = 2 * radius * rate_bound(t1 - t0);
   // The margins found so far in this search, by time (an interval's ends were found when it was made).
   margin_samples_.clear();

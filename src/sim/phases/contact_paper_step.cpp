@@ -39,7 +39,8 @@ void Contact::paper_step() {
   event_candidates_.clear();
   bool event = false;
   for (std::size_t k = 0; k < next_z_.size(); ++k) {
-    if (std::min(z_[k], next_z_[k]) <= level + swept + run.tol.event) event_candidates_.push_back(static_cast<int>(k));
+    if (std::min(z_[k], next_z_[k]) <= level + swept + run.tol.event)
+      event_candidates_.push_back(static_cast<int>(k));
     event = event || pierces(k, next_z_[k]) || enters_band(k, next_z_[k]);
   }
 
@@ -47,7 +48,8 @@ void Contact::paper_step() {
   if (event) {
     // The earliest instant at which an event holds, to 2^-48 of the step.
     auto trial = [&](double s, Rotation& out) {
-      return rotate_step(run.body, support_, rot_, s, params.quaternion_tolerance, params.max_iterations, out);
+      return rotate_step(run.body, support_, rot_, s, params.quaternion_tolerance, params.max_iterations,
+                         out);
     };
     EventSearch search;
     search.max_halvings = kPaperHalvings;

@@ -26,10 +26,11 @@ bool Contact::choose_support(const LineFit& fit, const Vec2& g, const Vec3& omeg
   };
 
   // Several points on the wall: the support that lets the others lift off (impact_support.hpp).
-  const SwitchState impact{run.body, run.q, run.com, omega, com_velocity, run.tol.length, run.tol.touch,
-                      run.tol.rebound_window};
+  const SwitchState impact{run.body,     run.q,          run.com,       omega,
+                           com_velocity, run.tol.length, run.tol.touch, run.tol.rebound_window};
   touches_.clear();
-  for (int k : touching_) touches_.push_back({k, world_vertex(run.q, k), verts[static_cast<std::size_t>(k)], z_[k]});
+  for (int k : touching_)
+    touches_.push_back({k, world_vertex(run.q, k), verts[static_cast<std::size_t>(k)], z_[k]});
   auto take = [&](const SupportChoice& c) {
     next = c.support;
     next_vertex = c.vertex;

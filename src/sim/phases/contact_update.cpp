@@ -14,7 +14,8 @@ namespace repose::sim {
 // Recomputes the contact and touching sets, checks for rest, and switches the support if the contacts call
 // for another one. `omega` and `com_velocity` are the motion just before (for the impact law). True if the
 // particle rests (rest_ holds where).
-bool Contact::update(const Vec3& omega, const Vec3& com_velocity, bool heights_known, BandSource band_source) {
+bool Contact::update(const Vec3& omega, const Vec3& com_velocity, bool heights_known,
+                     BandSource band_source) {
   Run& run = run_;
   const Tolerances& tol = run.tol;
   // A margin of the touching tolerance: points that reach the band together (mirror images) join together,
@@ -75,8 +76,8 @@ bool Contact::update(const Vec3& omega, const Vec3& com_velocity, bool heights_k
     footprints_.emplace_back(contact_points_.back().x(), contact_points_.back().y(), 0.0);
   }
   LineFit fit;
-  run.record.set_type(run.smooth ? ContactType::point : classify_contact(footprints_, tol.rss_threshold, &fit),
-                      run.t);
+  run.record.set_type(
+      run.smooth ? ContactType::point : classify_contact(footprints_, tol.rss_threshold, &fit), run.t);
 
   const Vec2 g(run.com.x(), run.com.y());
   if (run.smooth) {

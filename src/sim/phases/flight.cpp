@@ -7,7 +7,12 @@
 namespace repose::sim {
 
 Flight::Flight(Run& run, const Vec3& velocity, const Vec3& omega, double height)
-    : run_(run), origin_(run.com), velocity_(velocity), t0_(run.t), omega_(omega), spinning_(omega != Vec3::Zero()) {
+    : run_(run),
+      origin_(run.com),
+      velocity_(velocity),
+      t0_(run.t),
+      omega_(omega),
+      spinning_(omega != Vec3::Zero()) {
   run.record.set_type(run.record.phases.empty() && !spinning_ ? ContactType::free_fall : ContactType::flight,
                       run.t);
   if (!spinning_) {

@@ -27,8 +27,8 @@ double Flight::locate_touch(double a, double b) {
                        .minCoeff();
   const Mat3 R0 = run_.q.toRotationMatrix();
   const double spin_momentum = (R0 * run_.body.inertia * R0.transpose() * omega_).norm();
-  const double accel =
-      run_.params.gravity + 2 * run_.hull_radius * spin_momentum * spin_momentum / (inertia_min_ * inertia_min_);
+  const double accel = run_.params.gravity +
+                       2 * run_.hull_radius * spin_momentum * spin_momentum / (inertia_min_ * inertia_min_);
   // A vertex's height and vertical speed on top of the centre of mass's.
   const auto vertex = [&](const Rotation& st, std::pair<double, double> c, std::size_t k) {
     const Vec3 r = st.q * verts[k];

@@ -49,7 +49,8 @@ std::optional<RestPose> flush_rest(Run& run, const Support& support) {
   for (int k : face.loop) rest.points.push_back(run.com + run.q * particle.hull.vertices[k]);
   rest.face = best;
   rest.kind = run.smooth ? RestKind::smooth
-                         : (particle.face_is_flat[static_cast<std::size_t>(best)] ? RestKind::surface : RestKind::points);
+                         : (particle.face_is_flat[static_cast<std::size_t>(best)] ? RestKind::surface
+                                                                                  : RestKind::points);
   // Whatever the band looked like on the way down, the particle now rests on a face: a surface contact.
   if (!run.smooth) run.record.set_type(ContactType::surface, run.t);
   if (!run.record.phases.empty()) run.record.phases.back().t1 = run.t;
