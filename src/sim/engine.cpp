@@ -70,8 +70,8 @@ void Engine::start_contact(const Vec3& com_velocity, const Vec3& omega, bool car
 }
 
 void Engine::stop(Status why) {
-  Stopped stopped{why, sample().omega, sample().contact_count, kinetic_energy()};
-  phase_.emplace<Stopped>(stopped);
+  const Sample now = sample();  // the motion it had, as the phase it stops reports it
+  phase_.emplace<Stopped>(Stopped{why, now.omega, now.contact_count, now.kinetic_energy});
 }
 
 bool Engine::advance_to(double time) {

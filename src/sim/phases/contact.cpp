@@ -19,10 +19,7 @@ std::optional<RestPose> Contact::begin(const Vec3& com_velocity, const Vec3& ome
   const int lowest = run.lowest_vertex(run.q);
   const Vec3 p = run.particle.hull.vertices[static_cast<std::size_t>(lowest)];
   const Vec3 arm = run.q * p;
-  support_ = {Vec3(run.com.x() + arm.x(), run.com.y() + arm.y(), 0.0), p, false, Vec3::UnitX()};
-  support_vertex_ = lowest;
-  reach_radius_ = run.hull_radius + support_.body.norm();
-  run.com = com_position(support_, run.q);
+  set_support({Vec3(run.com.x() + arm.x(), run.com.y() + arm.y(), 0.0), p, false, Vec3::UnitX()}, lowest);
   rot_ = {run.q, Vec3::Zero(), Vec3::Zero()};
   if (carry) {
     rot_.momentum = momentum_after_switch(run.body, run.q, run.com, omega, com_velocity, support_);
