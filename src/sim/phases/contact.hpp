@@ -140,8 +140,11 @@ class Contact {
   // Where the update finds the band: by a walk, or among the step's event candidates (which hold every
   // vertex that can be in the band until the step's end, about the same support).
   enum class BandSource { walk, step_candidates };
-  bool update(const Vec3& omega, const Vec3& com_velocity, bool heights_known = false,
-              BandSource band_source = BandSource::walk);
+  // What the update did: kept the support, switched to another (or tipped off an edge balance: the motion
+  // restarts), or found the rest (rest_ holds where).
+  enum class Outcome { same_support, new_support, rest };
+  Outcome update(const Vec3& omega, const Vec3& com_velocity, bool heights_known = false,
+                 BandSource band_source = BandSource::walk);
   void quiet_update();
   void trace_update() const;
   double stability_margin(const std::vector<Vec3>& points, const Vec2& g) const;
@@ -159,7 +162,7 @@ class Contact {
   void remember_axis(const Vec3& omega);
   std::vector<Vec2> touching_polygon(const Quat& q) const;
   bool touching_points_hold(const Vec2& g) const;
-  void tip_off_edge_balance(const Vec2& g);
+  bool tip_off_edge_balance(const Vec2& g);
 
   // ---- vertex walks (contact_walks.cpp)
   void vertices_below(const Quat& qq, double level, std::vector<int>& out, bool sorted);

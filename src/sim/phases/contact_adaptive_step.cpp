@@ -110,17 +110,15 @@ void Contact::adaptive_step() {
   // This step's event candidates reach the band's level (not a smooth particle's, collected to the wall
   // only), for the support they were collected about.
   const auto band_source = run.smooth ? BandSource::walk : BandSource::step_candidates;
-  if (update(rot_.omega, rot_.omega.cross(run.com - support_.world), false, band_source)) return;
+  Outcome out = update(rot_.omega, rot_.omega.cross(run.com - support_.world), false, band_source);
+  if (out == Outcome::rest) return;
   // A support chosen from several touching points by the impact law is chosen again at once with the motion
   // it leaves: the choice the paper's fixed step makes one step later, here at dt → 0. (An impact can switch
   // to a line whose motion then lets one of its points lift.)
-  for (int again = 0; again < kRedecisions && !run.smooth && step.restart && touching_.size() >= 2; ++again) {
-    step.restart = false;
-    if (update(rot_.omega, rot_.omega.cross(run.com - support_.world))) return;
-    if (!step.restart) {
-      step.restart = true;
-      break;
-    }
+  for (int again = 0;
+       again < kRedecisions && !run.smooth && out == Outcome::new_support && touching_.size() >= 2; ++again) {
+    out = update(rot_.omega, rot_.omega.cross(run.com - support_.world));
+    if (out == Outcome::rest) return;
   }
   decision_cached_ = keep && !step.restart && contact_ == decision_contact_ &&
                      touching_ == decision_touching_ && support_vertex_ == vertex_before &&

@@ -176,16 +176,17 @@ bool Contact::touching_points_hold(const Vec2& g) const {
 // That is an unstable equilibrium, not a rest. Rule (docs/method.md): turn the particle about the edge until
 // its centre of mass is tol::kBalanceOffset·L beyond it, on the side it leans to by round-off (the left of
 // the edge's direction when exactly on it), with no motion; the run then integrates the fall, and its time.
-void Contact::tip_off_edge_balance(const Vec2& g) {
+// True if it was on a balance (the motion restarts).
+bool Contact::tip_off_edge_balance(const Vec2& g) {
   Run& run = run_;
   const double touch = run.tol.touch;
   const std::vector<Vec2> poly = touching_polygon(run.q);
-  if (poly.size() != 2) return;
+  if (poly.size() != 2) return false;
   const Vec2 a = poly[0], edge = poly[1] - poly[0];
   const Vec2 e = edge.normalized();
   const double along = (g - a).dot(e);
   const double lean = e.x() * (g.y() - a.y()) - e.y() * (g.x() - a.x());  // left of the edge: positive
-  if (along < -touch || along > edge.norm() + touch || std::abs(lean) > touch) return;
+  if (along < -touch || along > edge.norm() + touch || std::abs(lean) > touch) return false;
   // The pivot: the touching point nearest the edge's first end.
   int pivot_vertex = touching_[0];
   double nearest = INFINITY;
@@ -213,6 +214,7 @@ void Contact::tip_off_edge_balance(const Vec2& g) {
   adaptive_.restart_step = 0;
   note_penetration();
   remember_axis(rot_.omega);
+  return true;
 }
 
 }  // namespace repose::sim

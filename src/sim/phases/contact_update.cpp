@@ -12,10 +12,9 @@
 namespace repose::sim {
 
 // Recomputes the contact and touching sets, checks for rest, and switches the support if the contacts call
-// for another one. `omega` and `com_velocity` are the motion just before (for the impact law). True if the
-// particle rests (rest_ holds where).
-bool Contact::update(const Vec3& omega, const Vec3& com_velocity, bool heights_known,
-                     BandSource band_source) {
+// for another one. `omega` and `com_velocity` are the motion just before (for the impact law).
+Contact::Outcome Contact::update(const Vec3& omega, const Vec3& com_velocity, bool heights_known,
+                                 BandSource band_source) {
   Run& run = run_;
   const Tolerances& tol = run.tol;
   // A margin of the touching tolerance: points that reach the band together (mirror images) join together,
@@ -84,25 +83,26 @@ bool Contact::update(const Vec3& omega, const Vec3& com_velocity, bool heights_k
     // Three or more points on the wall around the centre of mass: the discretised surface has landed on a
     // face and the inelastic impact leaves no motion (this also ends the ever-faster rocking between the
     // corners of the bottom face). That landing is the only rest: a damped particle creeps onto its facet.
-    if (touching_.size() >= 3 && touching_points_hold(g) && (rest_ = flush_rest(run, support_))) return true;
+    if (touching_.size() >= 3 && touching_points_hold(g) && (rest_ = flush_rest(run, support_)))
+      return Outcome::rest;
   } else {
     // The paper's test first: a particle that rests at once (landed flat) has passed it too.
     if (!finishing_ && stability_margin(contact_points_, g) > 0) {
       finishing_ = true;
       run.record.stable_time = run.t;
     }
-    if (touching_points_hold(g) && (rest_ = flush_rest(run, support_))) return true;
+    if (touching_points_hold(g) && (rest_ = flush_rest(run, support_))) return Outcome::rest;
   }
   // A surface contact turns about the previous rotation axis: the paper's step remembers it at the end of
   // each step (dt before), the adaptive one from the motion just before this update, which the paper's
   // converges to as dt → 0 (its steps are up to 0.05·τ apart).
   if (run.adaptive) remember_axis(omega);
-  choose_support(fit, g, omega, com_velocity);
+  bool switched = choose_support(fit, g, omega, com_velocity);
   // An edge balance with no motion is left by the documented rule (contact_support.cpp), on a smooth surface
   // too: otherwise only round-off would tip it, after a time no model sets.
-  if (kinetic_energy() < tol.still_energy) tip_off_edge_balance(g);
+  if (kinetic_energy() < tol.still_energy) switched = tip_off_edge_balance(g) || switched;
   trace_update();
-  return false;
+  return switched ? Outcome::new_support : Outcome::same_support;
 }
 
 // After a step that changed nothing the update decides (contact_adaptive_step.cpp): the heights of the
