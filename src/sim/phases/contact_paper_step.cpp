@@ -46,38 +46,38 @@ void Contact::paper_step() {
 
   band_entered_ = false;
   if (event) {
-    // The earliest instant at which an event holds, to 2^-48 of the step.
-    auto trial = [&](double s, Rotation& out) {
-      return rotate_step(run.body, support_, rot_, s, params.quaternion_tolerance, params.max_iterations,
-                         out);
+    // The earliest instant at which an event holds, to 2^-48 of the step. The state at a trial instant is
+    // the paper's step to it; the bracket's ends are the last trial at which the event held (else the step's
+    // end) and the last at which it did not (else its start), so those two are kept.
+    struct Trial {
+      Rotation state;
+      int iterations = 0;
+      EventFlags event;
     };
+    Trial held{next, iterations, paper_event_at(next.q)}, clear{rot_, 0, {}};
     EventSearch search;
     search.max_halvings = kPaperHalvings;
     search.hi_holds_known = true;
     const Located at = locate(
         0.0, h, search,
         [&](double s) {
-          Rotation state;
-          trial(s, state);
-          return paper_event_at(state.q).any;
+          Trial trial;
+          trial.iterations = rotate_step(run.body, support_, rot_, s, params.quaternion_tolerance,
+                                         params.max_iterations, trial.state);
+          trial.event = paper_event_at(trial.state.q);
+          (trial.event.any ? held : clear) = trial;
+          return trial.event.any;
         },
         monotone);
     // A vertex entering the band: take the instant just after (it is then inside). A vertex reaching the
     // wall: take the instant just before, so it touches from above (within the event tolerance) and never
     // pierces.
-    Rotation hi_state = next;
-    if (at.hi < h) iterations = trial(at.hi, hi_state);
-    const bool hi_pierced = paper_event_at(hi_state.q).pierced;
+    const bool hi_pierced = held.event.pierced;
     band_entered_ = !hi_pierced;
-    if (hi_pierced) {
-      taken = at.lo;
-      iterations = 0;
-      next = rot_;
-      if (at.lo > 0) iterations = trial(at.lo, next);
-    } else {
-      taken = at.hi;
-      next = hi_state;
-    }
+    const Trial& taken_trial = hi_pierced ? clear : held;
+    taken = hi_pierced ? at.lo : at.hi;
+    next = taken_trial.state;
+    iterations = taken_trial.iterations;
   }
   if (iterations >= params.max_iterations) ++run.record.unconverged;
   const Vec3 omega_before = next.omega;
