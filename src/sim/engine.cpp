@@ -82,10 +82,8 @@ bool Engine::advance_to(double time) {
 }
 
 Status Engine::status() const {
-  return std::visit(
-      Overloaded{[](const Rest&) { return Status::rest; }, [](const Stopped& s) { return s.why; },
-                 [](const auto&) { return Status::running; }},
-      phase_);
+  if (const Stopped* stopped = std::get_if<Stopped>(&phase_)) return stopped->why;
+  return std::holds_alternative<Rest>(phase_) ? Status::rest : Status::running;
 }
 
 double Engine::kinetic_energy() const {
