@@ -52,7 +52,8 @@ TEST_F(PosesOptionsCli, FullSettleGivesTheSameCountsDropForDrop) {
 }
 
 TEST_F(PosesOptionsCli, DampingRatioSetsTheDocumentedCoefficient) {
-  // A 1 x 2 x 3 box of density 2: V = 6, m = 12, L = (6V/π)^(1/3); C = ratio·m·sqrt(g·L³) (docs/rest-poses.md, --help).
+  // A 1 x 2 x 3 box of density 2: V = 6, m = 12, L = (6V/π)^(1/3); C = ratio·m·sqrt(g·L³)
+  // (docs/rest-poses.md, --help).
   const double m = 12, g = 9.81, length = std::cbrt(36 / std::numbers::pi);
   const std::string args = "poses box:x=1,y=2,z=3 --density 2 -n 4 --json";
   // Measured: 4e-16 relative (the code multiplies in another order). 1e-12 sees any factor.
