@@ -75,6 +75,9 @@ class Contact {
   /// The decisions at orientation qq about the current support. Once the stability test has passed the
   /// contact set is the pose's own, picked among `candidates` (a superset of the vertices in the band).
   Decision decision_at(const Quat& qq, bool with_reach, std::span<const int> candidates);
+  /// A bound (rad) of the angle the particle can turn about its support in the next time h from now, from
+  /// energy (contact_adaptive_step.cpp); the adaptive steps' event candidates and decision checks rest on it.
+  double arc_bound(double h) const;
   /// Whether the decisions take the pose's own contact set (the stability test has passed, adaptive).
   bool decisions_use_own_set() const { return run_.adaptive && !run_.smooth && finishing_; }
   /// The height above the wall of hull vertex k at the orientation whose rotation matrix has third row r3,
@@ -127,7 +130,6 @@ class Contact {
   double locate_step_event(double lo, double hi);
   double smallest_moment() const;
   std::array<double, 2> rate_coefficients() const;
-  double arc_bound(double h) const;
   double rate_bound(double h) const;
 
   // ---- decisions (contact_decisions.cpp)
