@@ -8,6 +8,8 @@ template <class... F>
 struct Overloaded : F... {
   using F::operator()...;
 };
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;  // (clang 14 has no aggregate deduction)
 }  // namespace
 
 Engine::Engine(const Particle& particle, const SettleParams& params, const Quat& orientation)
