@@ -127,7 +127,7 @@ class Contact {
   void paper_step();
   void adaptive_step();
   void begin_adaptive_step();
-  double locate_step_event(double lo, double hi);
+  double locate_step_event(double lo, double hi, const EventFlags& at_hi);
   double smallest_moment() const;
   std::array<double, 2> rate_coefficients() const;
   double rate_bound(double h) const;

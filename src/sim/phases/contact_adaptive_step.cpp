@@ -5,6 +5,8 @@
 #include <array>
 #include <cmath>
 #include <span>
+#include <tuple>
+#include <utility>
 
 #include "../events.hpp"
 #include "contact.hpp"
@@ -157,9 +159,10 @@ void Contact::begin_adaptive_step() {
   for (int i = 0; i <= kEventSamples; ++i)
     times[i] = i == kEventSamples ? t1 : t0 + (t1 - t0) * i / kEventSamples;
   int first = -1;
+  EventFlags at_first;
   if (!reachable.empty())
     for (int i = 1; i <= kEventSamples && first < 0; ++i)
-      if (adaptive_event_at(integrator_->orientation_at(times[i])).any) first = i;
+      if ((at_first = adaptive_event_at(integrator_->orientation_at(times[i]))).any) first = i;
   step.end = t1;
   step.event = first > 0;
   step.band_entered = false;
@@ -167,7 +170,7 @@ void Contact::begin_adaptive_step() {
     locate_decision_change(t0, t1, std::span(times).subspan(1, kEventSamples - 1));
     return;
   }
-  const double before_event = locate_step_event(times[first - 1], times[first]);
+  const double before_event = locate_step_event(times[first - 1], times[first], at_first);
   locate_decision_change(t0, before_event, std::span(times).subspan(1, first - 1));
 }
 
@@ -176,15 +179,23 @@ void Contact::begin_adaptive_step() {
 // after a band event, just before a vertex reaches the wall. Only an entry counts as "a point entered the
 // band" for the choice of support (a point that leaves it does not), and not once the stability test has
 // passed. Returns the bracket's lower end, the last instant known to be before the event.
-double Contact::locate_step_event(double lo, double hi) {
+double Contact::locate_step_event(double lo, double hi, const EventFlags& at_hi) {
   EventSearch search;
   search.resolution = (hi - lo) * (kEventResolution * kEventSamples);  // the bracket is 1/8 of the step
   search.max_halvings = kMaxHalvings;
   search.hi_holds_known = true;
+  // The events at the bracket's upper end: at hi, or at the last instant tested at which one held.
+  double held_at = hi;
+  EventFlags held = at_hi;
   const Located at = locate(
-      lo, hi, search, [&](double s) { return adaptive_event_at(integrator_->orientation_at(s)).any; },
+      lo, hi, search,
+      [&](double s) {
+        const EventFlags e = adaptive_event_at(integrator_->orientation_at(s));
+        if (e.any) std::tie(held_at, held) = std::pair{s, e};
+        return e.any;
+      },
       monotone, [&](double s) { return event_margin(integrator_->orientation_at(s)); });
-  const EventFlags flags = adaptive_event_at(integrator_->orientation_at(at.hi));
+  const EventFlags flags = held_at == at.hi ? held : adaptive_event_at(integrator_->orientation_at(at.hi));
   adaptive_.band_entered = !flags.pierced && flags.entered && !finishing_;
   adaptive_.end = flags.pierced ? at.lo : at.hi;
   return at.lo;

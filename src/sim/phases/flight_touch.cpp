@@ -93,14 +93,10 @@ double Flight::locate_touch(double a, double b) {
   EventSearch search;
   search.resolution = (b - a) * kEventResolution;
   const Located touch = locate(a, b, search, below, clear);
-  switch (touch.kind) {
-    case Located::Kind::bracket:
-      return touch.lo;  // on or above the wall at lo, below it at hi
-    case Located::Kind::exhausted:
-      return touch.lo;
-    default:
-      return INFINITY;
-  }
+  // A bracket: on or above the wall at lo, below it at hi. A search cut short (a tangency within round-off)
+  // takes the start of the interval it would have examined next as the touch.
+  const bool ends = touch.kind == Located::Kind::bracket || touch.kind == Located::Kind::exhausted;
+  return ends ? touch.lo : INFINITY;
 }
 
 }  // namespace repose::sim
