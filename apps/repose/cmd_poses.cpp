@@ -8,11 +8,14 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 
+#include "cli_numbers.hpp"
 #include "commands.hpp"
 #include "format.hpp"
+#include "interrupt.hpp"
 #include "mesh_options.hpp"
 #include "physics_options.hpp"
 #include "progress_bar.hpp"
@@ -55,18 +58,6 @@ struct PosesOptions {
   bool json = false;
 };
 
-// Checks the text of an unsigned option before CLI11 converts it, which would wrap "-5" into a huge count.
-CLI::Validator whole_number(std::uint64_t min) {
-  return CLI::Validator(
-      [min](std::string& text) -> std::string {
-        const bool digits =
-            !text.empty() && text.size() <= 19 && text.find_first_not_of("0123456789") == std::string::npos;
-        if (digits && std::stoull(text) >= min) return {};
-        return "must be a whole number >= " + std::to_string(min) + ", got '" + text + "'";
-      },
-      "INT >= " + std::to_string(min));
-}
-
 DropRange parse_range(const std::string& text) {
   const auto colon = text.find(':');
   const auto bad = [&] {
@@ -75,19 +66,31 @@ DropRange parse_range(const std::string& text) {
   if (colon == std::string::npos) throw bad();
   const std::string a = text.substr(0, colon), b = text.substr(colon + 1);
   const auto parse = [&](const std::string& s) {
-    if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos || s.size() > 19) throw bad();
-    return static_cast<std::uint64_t>(std::stoull(s));
+    const std::optional<std::string> digits = exact_whole_number(s);
+    if (!digits) throw bad();
+    return static_cast<std::uint64_t>(std::stoull(*digits));
   };
   DropRange r{parse(a), parse(b)};
   if (r.begin >= r.end) throw bad();
   return r;
 }
 
-void warn_unrested(const std::string& what, std::uint64_t unrested) {
-  if (unrested > 0)
-    std::cerr << "repose: warning: " << what << unrested
-              << " drops did not come to rest within the limits (see status_counts; raise --max-time or "
-                 "--max-steps)\n";
+// Exit code 3 (as settle's) when drops ended before coming to rest: their poses are not counted, so the
+// probabilities describe only the drops that rested. The result files are written all the same.
+constexpr int kNotAtRest = 3;
+
+std::uint64_t unrested(const PosesStudy& study) {
+  return study.tally.status_counts[2] + study.tally.status_counts[3];
+}
+
+// The warning, and the exit code.
+int report_unrested(const std::string& what, const PosesStudy& study) {
+  const std::uint64_t n = unrested(study);
+  if (n == 0) return 0;
+  std::cerr << "repose: warning: " << what << n << " of " << study.tally.drops()
+            << " drops did not come to rest within the limits and are not counted (status_counts; raise "
+               "--max-time or --max-steps); exit code 3\n";
+  return kNotAtRest;
 }
 
 // Writes BASE.json and BASE.csv.
@@ -99,10 +102,17 @@ void write_result(const std::string& base, const PosesStudy& study) {
   }
 }
 
-void print_result(const PosesStudy& study, bool json) {
+int print_result(const PosesStudy& study, bool json) {
   std::cout << (json ? poses_json(study) : poses_table(study));
-  warn_unrested("", study.tally.status_counts[2] + study.tally.status_counts[3]);
+  std::cout.flush();
+  return report_unrested("", study);
 }
+
+// What --method quasi-static (steepest descent of the centre of mass, no dynamics) would ignore.
+constexpr const char* kDynamicOnly[] = {
+    "--full-settle",       "--damping",        "--damping-ratio", "--integrator", "--dt",       "--tolerance",
+    "--contact-threshold", "--line-threshold", "--drop-height",   "--drop-speed", "--max-time", "--max-steps",
+    "--restitution",       "--friction",       "--velocity-max",  "--spin-max"};
 
 // The job's settings from the options (the same on every rank). Throws repose::Error for bad values.
 CampaignOptions campaign_options(const PosesOptions& o, const CLI::App& sub, int threads) {
@@ -118,6 +128,12 @@ CampaignOptions campaign_options(const PosesOptions& o, const CLI::App& sub, int
   check_positive("--density", o.physics.density);
   if (o.threads < 0)
     throw Error("option --threads must be >= 0 (0 = all cores), got " + std::to_string(o.threads));
+  if (o.method == "quasi-static")
+    for (const char* option : kDynamicOnly)
+      if (given(option))
+        throw Error(std::string("poses: ") + option +
+                    " has no effect with --method quasi-static (it sets the dynamic engine's drops); remove "
+                    "it or use --method dynamic");
   if (!std::isfinite(o.damping_ratio) || o.damping_ratio < 0)
     throw Error("option --damping-ratio must be a finite number >= 0, got " + num(o.damping_ratio));
   if (given("--persistence") && (!std::isfinite(o.persistence) || o.persistence < 0))
@@ -157,10 +173,14 @@ std::unique_ptr<WorkRunner> make_runner() {
 int run_job(const PosesOptions& o, const CLI::App& sub, WorkRunner& runner) {
   const auto start = std::chrono::steady_clock::now();
   // Ranks that share a node share its cores.
-  const int threads =
-      o.threads > 0
-          ? o.threads
-          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / runner.ranks_on_this_node());
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  int threads = o.threads > 0 ? o.threads : std::max(1, cores / runner.ranks_on_this_node());
+  if (threads > cores) {  // TBB would run no more threads than cores anyway, and say so in its own words
+    if (runner.is_root())
+      std::cerr << "repose: warning: --threads " << threads << " is more than the " << cores
+                << " cores of this machine; using " << cores << "\n";
+    threads = cores;
+  }
   // Options are checked on every rank alike, but only the root reports a problem.
   CampaignOptions campaign;
   std::exception_ptr bad_options;
@@ -186,10 +206,19 @@ int run_job(const PosesOptions& o, const CLI::App& sub, WorkRunner& runner) {
     return particles;
   };
 
-  std::atomic<std::uint64_t> done{0};
+  std::atomic<std::uint64_t> done{0}, kept{0};
   std::unique_ptr<ProgressBar> bar;
   campaign.progress = &done;
+  campaign.kept = &kept;
   campaign.on_start = [&](std::uint64_t remaining) {
+    const std::uint64_t total = campaign.drops.size() * particles.size();
+    if (remaining < total)
+      std::cerr << "repose: resuming from " << campaign.checkpoint_dir << ": " << total - remaining << " of "
+                << total << " drops found there, " << remaining << " to run\n";
+    install_interrupt_report({.total = total,
+                              .kept = o.out_dir.empty() ? nullptr : &kept,
+                              .done = &done,
+                              .checkpoint_dir = campaign.checkpoint_dir});
     bar = std::make_unique<ProgressBar>(remaining, done, !o.no_progress);
   };
   // One particle: DIR/poses.json; several: DIR/NAME.poses.json. Written before the checkpoint goes.
@@ -215,6 +244,7 @@ int run_job(const PosesOptions& o, const CLI::App& sub, WorkRunner& runner) {
     write_file_atomically(o.out_dir + "/summary.json", summary_json(summary));
   };
   const std::vector<PosesStudy> studies = run_campaign(resolve, campaign, runner);
+  remove_interrupt_report();
   bar.reset();
   if (!runner.is_root()) return 0;
 
@@ -223,14 +253,14 @@ int run_job(const PosesOptions& o, const CLI::App& sub, WorkRunner& runner) {
       write_file_atomically(
           o.html, poses_report_html(load_particle(particles[0].source, studies[0].density, particles[0].mesh),
                                     studies[0]));
-    print_result(studies[0], o.json);
-    return 0;
+    return print_result(studies[0], o.json);
   }
   std::cout << (o.json ? summary_json(summary) : summary_markdown(summary));
+  std::cout.flush();
+  int code = 0;
   for (std::size_t i = 0; i < particles.size(); ++i)
-    warn_unrested(particles[i].name + ": ",
-                  studies[i].tally.status_counts[2] + studies[i].tally.status_counts[3]);
-  return 0;
+    code = std::max(code, report_unrested(particles[i].name + ": ", studies[i]));
+  return code;
 }
 
 // The job ends collectively: the root prints its result or its one-line error and flushes, then tells every
@@ -334,8 +364,7 @@ Command add_merge_command(CLI::App& app) {
               }
             }
             if (!o->out_dir.empty()) write_result(o->out_dir + "/poses", merged);
-            print_result(merged, o->json);
-            return 0;
+            return print_result(merged, o->json);
           }};
 }
 

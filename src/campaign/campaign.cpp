@@ -179,14 +179,18 @@ std::vector<PosesStudy> run_campaign(const std::function<std::vector<CampaignPar
     } catch (const Error& e) {
       throw Error(name + ": " + e.what() + " (ranks computed different results: same binary everywhere?)");
     }
-    if (!options.checkpoint_dir.empty())
+    if (!options.checkpoint_dir.empty()) {
       write_file_atomically(checkpoint_path(options.checkpoint_dir, p),
                             poses_json(state.studies[item.particle]), FileDurability::synced);
+      if (options.kept) options.kept->fetch_add(item.drops.size());
+    }
   };
-  if (runner.is_root() && options.on_start) {
+  if (runner.is_root()) {
     std::uint64_t left = 0;
     for (const WorkItem& item : items) left += item.drops.size();
-    options.on_start(left);
+    if (options.kept && !options.checkpoint_dir.empty())
+      options.kept->store(options.drops.size() * particles.size() - left);
+    if (options.on_start) options.on_start(left);
   }
   runner.run(
       items,

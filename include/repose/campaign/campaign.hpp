@@ -63,6 +63,9 @@ struct CampaignOptions {
   /// removed, so that results written here are on disk before it goes.
   std::function<void(const std::vector<PosesStudy>& studies)> on_complete;
   std::atomic<std::uint64_t>* progress = nullptr;  ///< root only: finished drops
+  /// Root only, with a checkpoint: the drops the checkpoint files hold (found on resuming, then each item's
+  /// once its file is renamed into place), for a message on interruption.
+  std::atomic<std::uint64_t>* kept = nullptr;
 };
 
 /// Runs the job on `runner` (collective). `particles` is called on the root only (it may also check the
