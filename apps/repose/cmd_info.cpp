@@ -1,4 +1,5 @@
 // repose info MESH|SHAPE: geometry, mass properties and validation report of a particle.
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -8,6 +9,7 @@
 #include "mesh_options.hpp"
 #include "repose/io/mesh_io.hpp"
 #include "repose/model/particle.hpp"
+#include "repose/output/files.hpp"
 #include "repose/output/report.hpp"
 
 namespace repose::cli {
@@ -23,14 +25,21 @@ struct InfoOptions {
   std::string write_stl;
 };
 
-nlohmann::json info_json(const Particle& p, double density, const std::string& unit) {
+nlohmann::json info_json(const Particle& p, double density, const UnitNames& u) {
   const Aabb box{p.bounds.min + p.input_offset, p.bounds.max + p.input_offset};
   nlohmann::json j;
   j["source"] = p.name;
   j["density"] = density;
   j["inertia_model"] = to_string(p.options.inertia);
   j["scale"] = p.options.scale;
-  j["length_unit"] = unit;
+  j["length_unit"] = u.length;
+  j["units"] = {{"system", u.system},
+                {"length", u.length},
+                {"mass", u.mass},
+                {"area", u.area},
+                {"volume", u.volume},
+                {"inertia", u.inertia},
+                {"density", p.options.inertia == InertiaModel::shell ? u.area_density : u.density}};
   j["surface_is_hull"] = p.surface_is_hull;
   j["vertices"] = p.mesh.vertices.size();
   j["triangles"] = p.mesh.triangles.size();
@@ -50,7 +59,8 @@ nlohmann::json info_json(const Particle& p, double density, const std::string& u
   return j;
 }
 
-void print_info(const Particle& p, double density, const std::string& unit) {
+void print_info(const Particle& p, double density, bool density_given, const UnitNames& u) {
+  const std::string unit = u.length, m = std::string(" ") + u.length;
   const Aabb box{p.bounds.min + p.input_offset, p.bounds.max + p.input_offset};
   const Mat3 axes = p.mass.principal_axes;
   const bool shell = p.options.inertia == InertiaModel::shell;
@@ -68,23 +78,25 @@ void print_info(const Particle& p, double density, const std::string& unit) {
                 : p.options.inertia == InertiaModel::convex ? " (the solid convex hull)"
                                                             : " (the closed solid)")
             << "\n"
-            << "density             " << num(density) << (shell ? " per unit area" : "") << "\n";
-  if (shell)
-    std::cout << "surface area        " << num(p.mass.area) << "\n";
-  else
-    std::cout << "volume              " << num(p.mass.volume) << "\n";
-  std::cout << "mass                " << num(p.mass.mass) << "\n"
-            << "centre of mass      " << vec(p.input_offset)
+            << "density             " << num(density) << " " << (shell ? u.area_density : u.density)
+            << (density_given ? ""
+                              : " (the default; --density sets it: it scales mass, inertia and energies, "
+                                "not rest poses)")
+            << "\n";
+  std::cout << "surface area        " << num(p.mass.area) << " " << u.area << "\n";
+  if (!shell) std::cout << "volume              " << num(p.mass.volume) << " " << u.volume << "\n";
+  std::cout << "mass                " << num(p.mass.mass) << " " << u.mass << "\n"
+            << "centre of mass      " << vec(p.input_offset) << m
             << (p.options.center_of_mass ? " (given, --com; inertia: the model's about it)" : "") << "\n"
-            << "inertia about COM   " << vec(p.mass.inertia.row(0)) << "\n"
+            << "inertia about COM   " << vec(p.mass.inertia.row(0)) << " " << u.inertia << "\n"
             << "                    " << vec(p.mass.inertia.row(1)) << "\n"
             << "                    " << vec(p.mass.inertia.row(2)) << "\n"
-            << "principal moments   " << vec(p.mass.principal_moments) << "\n"
+            << "principal moments   " << vec(p.mass.principal_moments) << " " << u.inertia << "\n"
             << "principal axes      " << vec(axes.col(0)) << "\n"
             << "                    " << vec(axes.col(1)) << "\n"
             << "                    " << vec(axes.col(2)) << "\n"
-            << "bounding box        " << vec(box.min) << " .. " << vec(box.max) << "\n"
-            << "characteristic L    " << num(p.length) << "  (volume-equivalent sphere diameter"
+            << "bounding box        " << vec(box.min) << " .. " << vec(box.max) << m << "\n"
+            << "characteristic L    " << num(p.length) << m << " (volume-equivalent sphere diameter"
             << (p.options.inertia == InertiaModel::exact ? "" : " of the convex hull") << ")\n"
             << "convex hull         " << p.hull.vertices.size() << " vertices, " << p.hull.faces.size()
             << " planar faces\n";
@@ -117,8 +129,15 @@ Command add_info_command(CLI::App& app) {
   sub->add_flag("--json", opts->json, "Print JSON instead of text");
   sub->add_option("--write-stl", opts->write_stl,
                   "Also write the validated surface as binary STL (input frame)");
-  return {sub, [opts]() {
+  return {sub, [opts, sub]() {
             check_positive("--density", opts->density);
+            if (!opts->write_stl.empty()) {
+              // An STL beside others is not a run's output directory: it is not created.
+              const std::filesystem::path parent = std::filesystem::path(opts->write_stl).parent_path();
+              if (!parent.empty() && !std::filesystem::is_directory(parent))
+                throw Error(opts->write_stl + ": cannot write: " + parent.string() + " is not a directory");
+              ensure_output_file(opts->write_stl);
+            }
             const Particle p =
                 load_particle(opts->source, opts->density, opts->mesh.resolve(opts->units == "cgs"));
             if (!opts->write_stl.empty()) {
@@ -128,11 +147,12 @@ Command add_info_command(CLI::App& app) {
             }
             // Lengths are read in the run's unit (m, or cm with --units cgs): --mesh-units converts to it,
             // and without it (or with --scale) the coordinates are taken to be in it.
-            const std::string unit = opts->units == "cgs" ? "cm" : "m";
+            const UnitSystem units = opts->units == "cgs" ? UnitSystem::cgs : UnitSystem::si;
+            warn_implausible_size(p, units);
             if (opts->json)
-              std::cout << info_json(p, opts->density, unit).dump(2) << "\n";
+              std::cout << info_json(p, opts->density, unit_names(units)).dump(2) << "\n";
             else
-              print_info(p, opts->density, unit);
+              print_info(p, opts->density, sub->count("--density") > 0, unit_names(units));
             return 0;
           }};
 }

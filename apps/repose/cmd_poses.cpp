@@ -75,8 +75,8 @@ DropRange parse_range(const std::string& text) {
   return r;
 }
 
-// Exit code 3 (as settle's) when drops ended before coming to rest: their poses are not counted, so the
-// probabilities describe only the drops that rested. The result files are written all the same.
+// Exit code 3 (as settle's) when drops ended before coming to rest: they are in no pose, and the
+// probabilities (count / all drops) add up to less than 1. The result files are written all the same.
 constexpr int kNotAtRest = 3;
 
 std::uint64_t unrested(const PosesStudy& study) {
@@ -88,8 +88,8 @@ int report_unrested(const std::string& what, const PosesStudy& study) {
   const std::uint64_t n = unrested(study);
   if (n == 0) return 0;
   std::cerr << "repose: warning: " << what << n << " of " << study.tally.drops()
-            << " drops did not come to rest within the limits and are not counted (status_counts; raise "
-               "--max-time or --max-steps); exit code 3\n";
+            << " drops did not come to rest within the limits: they are in no pose, so the probabilities add "
+               "up to less than 1 (status_counts; raise --max-time or --max-steps); exit code 3\n";
   return kNotAtRest;
 }
 
@@ -210,7 +210,9 @@ int run_job(const PosesOptions& o, const CLI::App& sub, WorkRunner& runner) {
   std::unique_ptr<ProgressBar> bar;
   campaign.progress = &done;
   campaign.kept = &kept;
-  campaign.on_start = [&](std::uint64_t remaining) {
+  campaign.on_start = [&](std::uint64_t remaining, const std::vector<PosesStudy>& prepared) {
+    for (const PosesStudy& study : prepared)
+      warn_implausible_size(study.source, study.length, o.physics.unit_system());
     const std::uint64_t total = campaign.drops.size() * particles.size();
     if (remaining < total)
       std::cerr << "repose: resuming from " << campaign.checkpoint_dir << ": " << total - remaining << " of "

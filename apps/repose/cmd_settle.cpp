@@ -47,14 +47,35 @@ std::string smooth_reason(const Particle& particle, SmoothMode mode, bool smooth
          " deg; smooth needs " + "convex and < 30)";
 }
 
-void print_summary(const Particle& particle, const SettleParams& params, const SettleResult& r) {
-  std::cout << "particle        " << particle.name << " (L = " << num(particle.length) << ")\n"
+// The start orientation as the user gave it, or the default said as such.
+std::string start_text(const SettleOptions& o, const CLI::App& sub) {
+  if (sub.count("--orientation") > 0) return o.orientation;
+  if (!o.scenario.empty()) return "the scenario's";
+  return "identity (the default: the mesh's axes; --orientation sets it)";
+}
+
+void print_summary(const Particle& particle, const SettleParams& params, const SettleResult& r,
+                   const std::string& start) {
+  const UnitNames& u = unit_names_for_gravity(params.gravity);
+  const std::string s = std::string(" ") + u.time, m = std::string(" ") + u.length;
+  std::cout << "particle        " << particle.name << " (L = " << num(particle.length) << m << ")\n"
             << "surface         " << smooth_reason(particle, params.smooth, r.smooth) << "\n"
-            << "status          " << to_string(r.status) << " after " << num(r.time) << " (" << r.steps
-            << " steps of dt " << num(r.dt) << ")\n";
+            << "start           " << start << "\n";
+  if (r.status == Status::rest)
+    std::cout << "at rest         at t = " << num(r.time) << s
+              << " (the time to rest: the supporting face flush on the wall, nothing moving)\n";
+  else
+    std::cout << "not at rest     stopped by "
+              << (r.status == Status::max_time ? "--max-time" : "--max-steps") << " at t = " << num(r.time)
+              << s << " (raise it; exit code 3)\n";
   if (r.stable_time >= 0)
-    std::cout << "stable          at " << num(r.stable_time)
-              << " (the paper's stability test, §2.4: its run ends here)\n";
+    std::cout << "stable          at t = " << num(r.stable_time) << s
+              << " (the paper's stability test, §2.4, passed: its run would stop here, the face up to "
+                 "contact-threshold above the wall)\n";
+  std::cout << "steps           " << r.steps
+            << (params.integrator == Integrator::adaptive ? " adaptive steps, none longer than "
+                                                          : " steps of ")
+            << num(r.dt) << s << "\n";
   if (r.status == Status::rest) {
     std::cout << "rests on        " << to_string(r.rest) << " (hull face " << r.rest_face << ", "
               << r.contact_points.size() << " support points)\n"
@@ -63,15 +84,16 @@ void print_summary(const Particle& particle, const SettleParams& params, const S
   std::cout << "orientation     "
             << vec(Eigen::Vector4d(r.orientation.w(), r.orientation.x(), r.orientation.y(),
                                    r.orientation.z()))
-            << " (w, x, y, z)\n"
-            << "centre of mass  " << vec(r.com) << "\n"
-            << "penetration     " << num(r.max_penetration) << " max ("
+            << " (w, x, y, z; body to world)\n"
+            << "centre of mass  " << vec(r.com) << m << "\n"
+            << "penetration     " << num(r.max_penetration) << m << " max ("
             << num(r.max_penetration / particle.length) << " L)\n"
-            << "energy          " << num(r.energy_start) << " -> " << num(r.energy_end) << "\n";
+            << "energy          " << num(r.energy_start) << " -> " << num(r.energy_end) << " " << u.energy
+            << " (kinetic + potential, from the wall)\n";
   if (!r.impacts.empty())
     std::cout << "impacts         " << r.impacts.size() << " while airborne, " << r.bounces
               << " followed by a flight (--json lists them)\n";
-  std::cout << "phases         ";
+  std::cout << "phases (" << u.time << ")     ";
   for (const Phase& p : r.phases)
     std::cout << " " << to_string(p.contact) << " [" << num(p.t0) << ", " << num(p.t1) << "]";
   std::cout << "\n";
@@ -126,6 +148,21 @@ RunSetup resolve_setup(const SettleOptions& o, const CLI::App& sub) {
   return setup;
 }
 
+// Options that would be ignored are refused: they say the user expects something that would not happen.
+void check_output_options(const SettleOptions& o, const CLI::App& sub) {
+  const auto given = [&](const char* option) { return sub.count(option) > 0; };
+  if (given("--frames") && given("--frame-dt"))
+    throw Error(
+        "settle: give --frames N (N frames spread over the run) or --frame-dt T (a frame every T), not both");
+  for (const char* option : {"--frames", "--frame-dt"})
+    if (given(option) && o.vtk_dir.empty())
+      throw Error(std::string("settle: ") + option +
+                  " sets the ParaView frames of --vtk DIR, which is not given");
+  if (given("--sample-dt") && o.out_dir.empty() && o.vtk_dir.empty() && o.html.empty())
+    throw Error(
+        "settle: --sample-dt spaces the samples written by --out, --vtk or --html, and none is given");
+}
+
 }  // namespace
 
 Command add_settle_command(CLI::App& app) {
@@ -136,7 +173,8 @@ Command add_settle_command(CLI::App& app) {
       "--scenario", o->scenario,
       "Scenario file (JSON, e.g. scenarios/paper/cylinder-1106.json); options given here override it");
   sub->add_option("--orientation", o->orientation,
-                  "Initial orientation, body to world: quat:w,x,y,z | axis-angle:x,y,z,radians | identity");
+                  "Initial orientation, body to world: quat:w,x,y,z | axis-angle:x,y,z,radians | identity "
+                  "(default identity: the mesh's axes as in the file)");
   add_physics_options(*sub, o->physics);
   add_mesh_options(*sub, o->mesh);
   add_param_options(*sub, o->physics, CliGroup::toss);  // --velocity, --spin
@@ -157,11 +195,15 @@ Command add_settle_command(CLI::App& app) {
       ->check(CLI::Range(2, 10000000));
   sub->add_flag("--json", o->json, "Print the JSON summary instead of text");
   return {sub, [o, sub]() {
+            check_output_options(*o, *sub);
             const RunSetup setup = resolve_setup(*o, *sub);
             if (!o->out_dir.empty()) ensure_output_directory(o->out_dir);
             if (!o->vtk_dir.empty()) ensure_output_directory(o->vtk_dir);
             if (!o->html.empty()) ensure_output_file(o->html);
             const Particle particle = load_particle(setup.source, setup.density, setup.mesh);
+            warn_implausible_size(particle, setup.params.gravity == standard_gravity(UnitSystem::cgs)
+                                                ? UnitSystem::cgs
+                                                : UnitSystem::si);
 
             // Samples are kept when frames must be spread over a run whose length is known only at its end.
             const bool keep_samples = !o->out_dir.empty() || !o->vtk_dir.empty() || !o->html.empty();
@@ -200,7 +242,7 @@ Command add_settle_command(CLI::App& app) {
             if (o->json)
               std::cout << summary;
             else
-              print_summary(particle, setup.params, r);
+              print_summary(particle, setup.params, r, start_text(*o, *sub));
             return r.status == Status::rest ? 0 : 3;
           }};
 }

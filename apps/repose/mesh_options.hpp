@@ -3,9 +3,11 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <iostream>
 #include <string>
 
 #include "format.hpp"
+#include "repose/model/params.hpp"
 #include "repose/model/particle.hpp"
 
 namespace repose::cli {
@@ -30,6 +32,26 @@ struct MeshCliOptions {
     return m;
   }
 };
+
+/// The sizes a particle's characteristic length L is expected within, in metres: from a fine powder grain to
+/// a boulder. Outside, the file's unit was most likely not the run's (a part in mm read as m is 1000x).
+inline constexpr double kPlausibleLengthMin = 1e-6, kPlausibleLengthMax = 10;
+
+/// One line on stderr if `length` (a particle's L, in the run's unit) is outside the plausible range, naming
+/// --mesh-units. Only a warning: nothing forbids simulating a 20 m block.
+inline void warn_implausible_size(const std::string& name, double length, UnitSystem units) {
+  const double metres = units == UnitSystem::cgs ? length / 100 : length;
+  if (metres >= kPlausibleLengthMin && metres <= kPlausibleLengthMax) return;
+  const char* unit = unit_names(units).length;
+  std::cerr << "repose: warning: " << name << ": L = " << num(length) << " " << unit << " is "
+            << (metres > kPlausibleLengthMax ? "larger than 10 m" : "smaller than 1 µm")
+            << "; if the file is not in " << (units == UnitSystem::cgs ? "centimetres" : "metres")
+            << ", give --mesh-units mm|cm|m|in (or --scale)\n";
+}
+
+inline void warn_implausible_size(const Particle& p, UnitSystem units) {
+  warn_implausible_size(p.name, p.length, units);
+}
 
 /// Registers --scale, --mesh-units, --inertia, --repair and --largest-component on `sub`.
 inline void add_mesh_options(CLI::App& sub, MeshCliOptions& o) {

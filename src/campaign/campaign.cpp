@@ -190,7 +190,7 @@ std::vector<PosesStudy> run_campaign(const std::function<std::vector<CampaignPar
     for (const WorkItem& item : items) left += item.drops.size();
     if (options.kept && !options.checkpoint_dir.empty())
       options.kept->store(options.drops.size() * particles.size() - left);
-    if (options.on_start) options.on_start(left);
+    if (options.on_start) options.on_start(left, state.studies);
   }
   runner.run(
       items,

@@ -70,11 +70,13 @@ MassProperties compute_mass_properties(const TriangleMesh& mesh, double density)
 
   // Volume integrals of 1, x, y, z, x², y², z², xy, yz, zx (times 6, 24, 24, 24, 60, ..., 120).
   std::array<double, 10> integral{};
+  double area = 0;
   for (const Triangle& t : mesh.triangles) {
     const Vec3 p0 = mesh.vertices[static_cast<std::size_t>(t[0])] - ref;
     const Vec3 p1 = mesh.vertices[static_cast<std::size_t>(t[1])] - ref;
     const Vec3 p2 = mesh.vertices[static_cast<std::size_t>(t[2])] - ref;
     const Vec3 d = (p1 - p0).cross(p2 - p0);
+    area += 0.5 * d.norm();
     const Sub sx = subexpressions(p0.x(), p1.x(), p2.x());
     const Sub sy = subexpressions(p0.y(), p1.y(), p2.y());
     const Sub sz = subexpressions(p0.z(), p1.z(), p2.z());
@@ -97,6 +99,7 @@ MassProperties compute_mass_properties(const TriangleMesh& mesh, double density)
   MassProperties props;
   const double volume = integral[0];
   props.volume = volume;
+  props.area = area;
   props.mass = density * volume;
   if (volume == 0) {
     // Nothing to divide by: a surface enclosing no volume has no centre of mass (the caller validates that

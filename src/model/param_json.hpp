@@ -25,4 +25,17 @@ inline nlohmann::json param_json(const ParamInfo& info, const SettleParams& p) {
       info.member);
 }
 
+/// The units of a result's numbers, written beside them so that a file says what its numbers mean.
+inline nlohmann::json units_json(const UnitNames& u) {
+  return {{"system", u.system},
+          {"length", u.length},
+          {"mass", u.mass},
+          {"time", u.time},
+          {"energy", u.energy},
+          {"speed", u.speed},
+          {"angular_speed", u.angular_speed},
+          {"inertia", u.inertia},
+          {"damping", u.damping}};
+}
+
 }  // namespace repose

@@ -12,6 +12,34 @@ namespace repose {
 
 double standard_gravity(UnitSystem units) { return units == UnitSystem::si ? 9.81 : 981.0; }
 
+const UnitNames& unit_names(UnitSystem units) {
+  static const UnitNames si{"si",    "m",     "kg", "s",   "m²",    "m³",      "kg/m³",
+                            "kg/m²", "kg·m²", "J",  "m/s", "rad/s", "kg·m²/s", "m/s²"};
+  static const UnitNames cgs{"cgs",   "cm",    "g",   "s",    "cm²",   "cm³",     "g/cm³",
+                             "g/cm²", "g·cm²", "erg", "cm/s", "rad/s", "g·cm²/s", "cm/s²"};
+  return units == UnitSystem::si ? si : cgs;
+}
+
+const UnitNames& unit_names_for_gravity(double gravity) {
+  static const UnitNames consistent{"consistent",
+                                    "length",
+                                    "mass",
+                                    "time",
+                                    "length²",
+                                    "length³",
+                                    "mass/length³",
+                                    "mass/length²",
+                                    "mass·length²",
+                                    "mass·length²/time²",
+                                    "length/time",
+                                    "rad/time",
+                                    "mass·length²/time",
+                                    "length/time²"};
+  for (const UnitSystem units : {UnitSystem::si, UnitSystem::cgs})
+    if (gravity == standard_gravity(units)) return unit_names(units);
+  return consistent;
+}
+
 namespace {
 
 // The first value of the parameter outside its range, if any (a choice's enum always holds a valid one).

@@ -80,13 +80,29 @@ std::string read_text_file(const std::string& path, std::size_t max_bytes) {
   return text;
 }
 
+namespace {
+
+// Whether a file `stem`.PID can be created (and removes it): the one sure test before a run that writes there
+// at its end. access() is not: it lets root by everywhere, even on /sys and read-only mounts.
+bool can_create(const std::string& stem) {
+  const std::string probe = stem + "-" + std::to_string(::getpid());
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+  if (fd < 0) return false;
+  ::close(fd);
+  ::unlink(probe.c_str());
+  return true;
+}
+
+}  // namespace
+
 void ensure_output_directory(const std::string& dir) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::exists(dir, ec)) fs::create_directories(dir, ec);
   if (ec) throw Error(dir + ": cannot create output directory: " + ec.message());
   if (!fs::is_directory(dir, ec)) throw Error(dir + ": not a directory");
-  if (::access(dir.c_str(), W_OK) != 0) throw Error(dir + ": output directory is not writable");
+  if (::access(dir.c_str(), W_OK) != 0 || !can_create(dir + "/.repose-probe"))
+    throw Error(dir + ": output directory is not writable");
 }
 
 void ensure_output_file(const std::string& path) {
@@ -99,6 +115,8 @@ void ensure_output_file(const std::string& path) {
   }
   std::error_code ec;
   if (fs::is_directory(path, ec)) throw Error(path + ": is a directory, not a file name");
+  // The file is written as a temporary beside it, then renamed: create one now.
+  if (!can_create(path + ".repose-probe")) throw Error(path + ": cannot be written: " + std::strerror(errno));
 }
 
 }  // namespace repose

@@ -44,6 +44,7 @@ std::string repair_report_json(const RepairReport& r) {
 std::string settle_summary_json(const Particle& particle, const SettleParams& params, const Quat& initial,
                                 const SettleResult& r) {
   nlohmann::json j;
+  j["units"] = units_json(unit_names_for_gravity(params.gravity));
   j["particle"] = {{"source", particle.name},
                    {"mass", particle.mass.mass},
                    {"volume", particle.mass.volume},

@@ -8,6 +8,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "../model/param_json.hpp"
 #include "repose/error.hpp"
 #include "repose/sim/settle.hpp"
 #include "study_settings.hpp"
@@ -109,6 +110,7 @@ std::string poses_json(const PosesStudy& s) {
   const std::uint64_t n = s.tally.drops();
   json j;
   j["command"] = "poses";
+  j["units"] = units_json(unit_names_for_gravity(s.params.gravity));
   j["particle"] = {{"source", s.source}, {"density", s.density},       {"characteristic_length", s.length},
                    {"mass", s.mass},     {"hull_faces", s.hull_faces}, {"smooth", s.smooth}};
   if (!s.fingerprint.empty()) j["particle"]["fingerprint"] = s.fingerprint;
@@ -161,8 +163,12 @@ PosesStudy parse_poses_json(const std::string& text, const std::string& name) {
     if (!v.is_number_integer()) throw Error(name + ": malformed poses result file (expected an integer)");
     return v;
   };
+  const json j = json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (j.is_discarded() || !j.is_object())
+    throw Error(name +
+                ": not a repose poses result file: " + (j.is_discarded() ? "not JSON" : "not a JSON object") +
+                " (give the poses.json that repose poses --out writes; the CSV cannot be read back)");
   try {
-    const json j = json::parse(text);
     if (j.value("command", "") != "poses") throw Error(name + ": not a repose poses result file");
     PosesStudy s;
     const json& particle = j.at("particle");
@@ -235,7 +241,11 @@ PosesStudy parse_poses_json(const std::string& text, const std::string& name) {
       throw Error(name + ": n does not match drop_ranges");
     return s;
   } catch (const json::exception& e) {
-    throw Error(name + ": malformed poses result file (" + std::string(e.what()) + ")");
+    // nlohmann's "[json.exception.out_of_range.403] key 'n' not found" without its bracketed id.
+    std::string what = e.what();
+    if (what.rfind("[json.exception.", 0) == 0 && what.find("] ") != std::string::npos)
+      what = what.substr(what.find("] ") + 2);
+    throw Error(name + ": malformed poses result file (" + what + ")");
   }
 }
 
@@ -300,15 +310,18 @@ std::string poses_table(const PosesStudy& s) {
   const std::uint64_t n = s.tally.drops();
   char line[256];
   std::string out;
-  std::snprintf(line, sizeof line, "particle   %s (L = %.6g, %d hull faces%s)\n", s.source.c_str(), s.length,
-                s.hull_faces, s.smooth ? ", smooth" : "");
+  const UnitNames& units = unit_names_for_gravity(s.params.gravity);
+  std::snprintf(line, sizeof line, "particle   %s (L = %.6g %s, %d hull faces%s)\n", s.source.c_str(),
+                s.length, units.length, s.hull_faces, s.smooth ? ", smooth" : "");
   out += line;
   std::snprintf(line, sizeof line, "drops      %llu (%s, seed %llu)\n", static_cast<unsigned long long>(n),
                 to_string(s.tally.method), static_cast<unsigned long long>(s.tally.seed));
   out += line;
-  out +=
-      "  pose   face    count  probability  95% interval       quasi-static  COM height  down normal "
-      "(body)\n";
+  // The COM height's column is as wide as its heading with the unit (UTF-8 units are ASCII here).
+  const std::string height = std::string("COM height (") + units.length + ")";
+  const int width = static_cast<int>(height.size());
+  out += "  pose   face    count  probability  95% interval       quasi-static  " + height +
+         "  down normal (body)\n";
   const std::vector<int> order = report_order(s);
   int shown = 0;
   for (int p : order) {
@@ -317,14 +330,17 @@ std::string poses_table(const PosesStudy& s) {
     if (t.count == 0 && pose.quasi_static_probability < 1e-4) continue;
     const auto ci = wilson_interval(t.count, n);
     std::snprintf(line, sizeof line,
-                  "  %4d  %5d  %7llu  %11.5f  [%.5f, %.5f]  %12.5f  %10.5g  [%.4f, %.4f, %.4f]\n", p,
+                  "  %4d  %5d  %7llu  %11.5f  [%.5f, %.5f]  %12.5f  %*.5g  [%.4f, %.4f, %.4f]\n", p,
                   pose.face, static_cast<unsigned long long>(t.count),
                   n ? static_cast<double>(t.count) / static_cast<double>(n) : 0.0, ci[0], ci[1],
-                  pose.quasi_static_probability, pose.com_height, pose.down_normal_body.x(),
+                  pose.quasi_static_probability, width, pose.com_height, pose.down_normal_body.x(),
                   pose.down_normal_body.y(), pose.down_normal_body.z());
     out += line;
     ++shown;
   }
+  out +=
+      "  (pose: its number in the catalogue, lowest centre of mass first, the same in the JSON, the CSV and\n"
+      "   the HTML report; face: the hull face it rests on)\n";
   if (shown < static_cast<int>(order.size())) {
     std::snprintf(line, sizeof line,
                   "  (%d rarer poses with no drops and quasi-static probability < 1e-4: see --json)\n",

@@ -154,7 +154,7 @@ TEST_F(Campaign, AStoppedJobResumesFromItsCheckpointToTheSameResult) {
   options_.chunk = kDrops / 5;
   options_.threads = 1;
   std::uint64_t remaining = 0;
-  options_.on_start = [&](std::uint64_t left) { remaining = left; };
+  options_.on_start = [&](std::uint64_t left, const std::vector<PosesStudy>&) { remaining = left; };
   LocalRunner runner;
   const auto studies = run_campaign([&] { return particles_; }, options_, runner);
   EXPECT_EQ(remaining, 2 * kDrops - saved);
@@ -187,7 +187,7 @@ TEST_F(Campaign, ACheckpointOfAnotherRunIsRefusedNamingIt) {
 TEST_F(Campaign, BadInputOnTheRootIsAnErrorBeforeAnyWork) {
   LocalRunner runner;
   bool started = false;
-  options_.on_start = [&](std::uint64_t) { started = true; };
+  options_.on_start = [&](std::uint64_t, const std::vector<PosesStudy>&) { started = true; };
   particles_.push_back({"nothing", (dir_ / "missing.stl").string()});
   EXPECT_THROW(run_campaign([&] { return particles_; }, options_, runner), Error);
   EXPECT_FALSE(started);

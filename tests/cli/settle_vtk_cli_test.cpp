@@ -106,14 +106,6 @@ TEST_F(SettleVtkCli, FramesSpreadThatManyFramesOverTheRun) {
   EXPECT_TRUE(fs::exists(dir_ / "vtk/wall.vtp"));
 }
 
-TEST_F(SettleVtkCli, FramesAndFrameDtTogetherCapTheCount) {
-  // --frame-dt 0.001 would give ~44 frames; --frames 5 keeps at most 5, the last slot for the rest.
-  const json j = run("--frame-dt 0.001 --frames 5");
-  const std::vector<double> times = frame_times();
-  ASSERT_EQ(times.size(), 5u);
-  EXPECT_EQ(times.back(), j["time_to_rest"].get<double>());
-  for (std::size_t i = 1; i + 1 < times.size(); ++i)
-    EXPECT_GE(times[i] - times[i - 1], 0.001 * (1 - 1e-12)) << "frame " << i;
-}
+// --frames with --frame-dt is refused (the synopsis offers one or the other): first_hour_cli_test.cpp.
 
 }  // namespace

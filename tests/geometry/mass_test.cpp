@@ -33,6 +33,7 @@ TEST(MassProperties, BoxIsExact) {
   const MassProperties mp = compute_mass_properties(mesh, density);
   const double m = density * a * b * c;
   expect_rel(mp.volume, a * b * c, kRoundOff, "volume");
+  expect_rel(mp.area, 2 * (a * b + b * c + c * a), kRoundOff, "area");  // a solid's surface too (info)
   expect_rel(mp.mass, m, kRoundOff, "mass");
   EXPECT_LT(mp.center_of_mass.norm(), kRoundOff);
   expect_rel(mp.inertia(0, 0), m * (b * b + c * c) / 12, kRoundOff, "Ixx");
@@ -64,6 +65,7 @@ TEST(MassProperties, RegularTetrahedron) {
   const double volume = 1.0 / (6.0 * std::sqrt(2.0));  // 0.1178511...
   expect_rel(mp.volume, volume, kRoundOff, "volume");
   EXPECT_NEAR(mp.volume, 0.1178511, 5e-8);  // the literal is rounded to 7 decimals (measured 3.0e-8)
+  expect_rel(mp.area, std::sqrt(3.0), kRoundOff, "area");  // four equilateral triangles of edge 1
   EXPECT_LT(mp.center_of_mass.norm(), kRoundOff);
   // A regular tetrahedron's inertia about its COM is isotropic: m·a²/20.
   const double moment = mp.mass / 20.0;

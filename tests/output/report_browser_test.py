@@ -8,6 +8,7 @@ keyboard. Screenshots are kept in REPOSE_REPORT_DIR for a person to look at.
 
 Run by ctest as output.ReportsInHeadlessChromium (tests/CMakeLists.txt).
 """
+import json
 import os
 import subprocess
 import time
@@ -104,6 +105,11 @@ def test_settle_report_plays_the_run(browser):
     # At the end the tetrahedron rests on a face.
     assert browser.find_element(By.CSS_SELECTOR, ".badge").text.startswith("surface")
     assert browser.execute_script("return document.querySelector('.clock').textContent") != "t = 0"
+    # Units in the plots' legends and titles and in the summary (si: the default; axis labels are drawn on
+    # the canvas, out of the text's reach).
+    text = browser.execute_script("return document.body.innerText")
+    for label in ("t (s)", "|ω| (rad/s)", "energies (J;", "phases (s)", "L = 0.6083 m"):
+        assert label in text, f"{path}: no '{label}' in the page"
     assert [e for e in browser.get_log("browser") if e["level"] == "SEVERE"] == []
 
 
@@ -117,6 +123,17 @@ def test_poses_report_shows_every_pose(browser):
     assert len(thumbs) == 6 and all(browser.execute_script("return arguments[0].naturalWidth", t) > 0
                                     for t in thumbs)
     assert len(browser.find_elements(By.CSS_SELECTOR, "svg.bars rect.measured")) == 6
+    # One pose numbering: each row's number and hull faces are those of the same pose in the JSON (issue 33;
+    # the report once numbered 1-6 by frequency while the JSON and the table used the catalogue's numbers).
+    result = json.loads(subprocess.run([CLI, "poses", "box:x=1,y=2,z=3", "-n", "300", "--json"], check=True,
+                                       capture_output=True, text=True, timeout=600).stdout)
+    shown = [(int(r.find_elements(By.TAG_NAME, "td")[0].text), r.find_elements(By.TAG_NAME, "td")[2].text)
+             for r in rows]
+    assert shown == [(p["pose"], ", ".join(map(str, p["faces"]))) for p in result["poses"]]
+    bar_labels = browser.execute_script(
+        "return [...document.querySelectorAll('svg.bars text')].map((t) => t.textContent)")
+    assert [str(p["pose"]) for p in result["poses"]] == [t for t in bar_labels if t.isdigit()]
+    assert "COM height (m)" in browser.execute_script("return document.body.innerText")
     move_slider(browser, "input.pose-slider", Keys.END)
     after = assert_drawn(browser, path, "poses-last.png")
     assert after != before, "moving the pose slider did not change the picture"

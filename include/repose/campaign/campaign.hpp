@@ -57,8 +57,9 @@ struct CampaignOptions {
   int threads = 0;             ///< threads per rank; 0 = all cores
   std::uint64_t chunk = 0;     ///< drops per work item; 0 = auto_chunk
   std::string checkpoint_dir;  ///< empty: no checkpoint (and no resume)
-  /// Root only: called once the drops are planned, with the number still to run.
-  std::function<void(std::uint64_t remaining)> on_start;
+  /// Root only: called once the drops are planned, with the number still to run and each particle's study
+  /// so far (its header: name, L, mass, hull; and what the checkpoint held), in input order.
+  std::function<void(std::uint64_t remaining, const std::vector<PosesStudy>& prepared)> on_start;
   /// Root only: every study is complete (one per particle, in input order). Called before the checkpoint is
   /// removed, so that results written here are on disk before it goes.
   std::function<void(const std::vector<PosesStudy>& studies)> on_complete;

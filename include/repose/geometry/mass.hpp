@@ -9,7 +9,7 @@ namespace repose {
 /// mesh and density are in.
 struct MassProperties {
   double volume = 0;                       ///< the solid's volume (0 for a shell)
-  double area = 0;                         ///< the surface's area (shells only; 0 for a solid)
+  double area = 0;                         ///< the surface's area (L^2)
   double mass = 0;                         ///< density · volume, or surface density · area
   Vec3 center_of_mass = Vec3::Zero();      ///< in the mesh's frame
   Mat3 inertia = Mat3::Zero();             ///< inertia tensor about the centre of mass, mesh axes

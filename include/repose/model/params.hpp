@@ -17,6 +17,32 @@ enum class UnitSystem { si, cgs };
 /// Standard gravity in the given unit system: 9.81 m/s² or 981 cm/s².
 double standard_gravity(UnitSystem units);
 
+/// The names of the units results are in, for output. repose computes in whatever consistent units the
+/// caller's lengths, density and gravity are in; the command line offers these two systems.
+struct UnitNames {
+  const char* system;  ///< "si", "cgs", or "consistent" (a gravity of neither)
+  const char* length;
+  const char* mass;
+  const char* time;
+  const char* area;
+  const char* volume;
+  const char* density;       ///< mass per volume
+  const char* area_density;  ///< mass per area (the shell inertia model)
+  const char* inertia;       ///< mass·length²
+  const char* energy;
+  const char* speed;
+  const char* angular_speed;
+  const char* damping;  ///< torque per angular speed, mass·length²/time
+  const char* acceleration;
+};
+
+/// The unit names of a system: m, kg, s, J (si) or cm, g, s, erg (cgs).
+const UnitNames& unit_names(UnitSystem units);
+
+/// The unit names of a run with this gravity: si's for 9.81, cgs's for 981 (what the command line sets),
+/// otherwise generic ones ("length", "mass·length²/time²", ...).
+const UnitNames& unit_names_for_gravity(double gravity);
+
 /// How the particle's surface is treated (section 2.2 of the paper).
 enum class SmoothMode {
   automatic,  ///< decide from the mesh: smooth if convex with every dihedral angle below 30°

@@ -43,6 +43,12 @@ function percent(p, digits = 3) {
 }
 
 // A two-column table of [label, value] rows.
+// The units a result's numbers are in (its "units" field; generic names for a file that predates it).
+const GENERIC_UNITS = { system: "consistent", length: "length", mass: "mass", time: "time", energy: "mass·length²/time²", speed: "length/time", angular_speed: "rad/time", inertia: "mass·length²", damping: "mass·length²/time" };
+function unitsOf(result) {
+  return (result && result.units) || GENERIC_UNITS;
+}
+
 function keyValueTable(rows) {
   return el("table", { class: "kv" }, ...rows.map(([k, v]) => el("tr", {}, el("th", {}, k), el("td", {}, v))));
 }

@@ -57,9 +57,9 @@ function probabilityChart(poses, method) {
     chart.append(svg("line", { x1: cx, x2: cx, y1: yOf(p.ci95[0]), y2: yOf(p.ci95[1]), class: "whisker" }));
     for (const end of p.ci95) chart.append(svg("line", { x1: cx - w / 4, x2: cx + w / 4, y1: yOf(end), y2: yOf(end), class: "whisker" }));
     chart.append(svg("rect", { x: x0 + band * 0.52, y: yOf(p.quasi_static_probability), width: w, height: yOf(0) - yOf(p.quasi_static_probability), class: "quasi" }));
-    chart.append(svg("text", { x: x0 + band / 2, y: H - bottom + 14, "text-anchor": "middle" }, String(i + 1)));
+    chart.append(svg("text", { x: x0 + band / 2, y: H - bottom + 14, "text-anchor": "middle" }, String(p.pose)));
   });
-  chart.append(svg("text", { x: left + plotW / 2, y: H - 6, "text-anchor": "middle" }, "rest pose (most frequent first)"));
+  chart.append(svg("text", { x: left + plotW / 2, y: H - 6, "text-anchor": "middle" }, "rest pose number (as in the table, JSON and CSV), most frequent first"));
   const legend = el(
     "p",
     { class: "legend" },
@@ -76,7 +76,8 @@ function settingsTable(study) {
   const rows = [];
   const show = (v) => (v === null ? "—" : typeof v === "object" ? JSON.stringify(v) : typeof v === "number" ? fmt(v, 6) : String(v));
   const part = study.particle;
-  rows.push(["particle", `${part.source}: L = ${fmt(part.characteristic_length)}, mass ${fmt(part.mass)}, density ${fmt(part.density)}, ${part.hull_faces} hull faces, ${part.smooth ? "smooth" : "non-smooth"}, inertia ${part.inertia_model}`]);
+  const u = unitsOf(study);
+  rows.push(["particle", `${part.source}: L = ${fmt(part.characteristic_length)} ${u.length}, mass ${fmt(part.mass)} ${u.mass}, density ${fmt(part.density)} ${u.mass}/${u.length}${part.inertia_model === "shell" ? "²" : "³"}, ${part.hull_faces} hull faces, ${part.smooth ? "smooth" : "non-smooth"}, inertia ${part.inertia_model}`]);
   rows.push(["drops", `${study.n} (ranges ${study.drop_ranges.map((r) => r.join("–")).join(", ")}), seed ${study.seed}, method ${study.method}`]);
   rows.push(["how they ended", Object.entries(study.status_counts).map(([k, v]) => `${k} ${v}`).join(", ") + `; decided early ${study.decided_early}`]);
   for (const [k, v] of Object.entries(study.settings)) rows.push([k.replaceAll("_", " "), show(v)]);
@@ -108,7 +109,7 @@ REPORTS.poses = (THREE, app) => {
     const p = poses[i];
     place(p);
     stage.render();
-    caption.textContent = `${i + 1} of ${poses.length}: face ${p.face}, probability ${percent(p.probability)} [${percent(p.ci95[0])}, ${percent(p.ci95[1])}], quasi-static ${percent(p.quasi_static_probability)}`;
+    caption.textContent = `${p.pose} (${i + 1} of ${poses.length} by frequency): hull face ${p.face}, probability ${percent(p.probability)} [${percent(p.ci95[0])}, ${percent(p.ci95[1])}], quasi-static ${percent(p.quasi_static_probability)}`;
   };
   slider.addEventListener("input", () => select(Number(slider.value)));
 
@@ -121,13 +122,13 @@ REPORTS.poses = (THREE, app) => {
     if (i < 48) {
       place(p);
       stage.render();
-      picture = el("img", { src: canvas.toDataURL("image/png"), alt: `pose ${i + 1} at rest`, class: "thumb" });
+      picture = el("img", { src: canvas.toDataURL("image/png"), alt: `pose ${p.pose} at rest`, class: "thumb" });
       thumbs.push(picture);
     }
     return el(
       "tr",
       { onclick: () => { slider.value = i; select(i); canvas.scrollIntoView({ behavior: "smooth" }); } },
-      el("td", {}, i + 1),
+      el("td", {}, p.pose),
       el("td", {}, picture),
       el("td", {}, p.faces.join(", ")),
       el("td", {}, p.count),
@@ -138,7 +139,8 @@ REPORTS.poses = (THREE, app) => {
       el("td", {}, p.barrier === null ? "—" : fmt(p.barrier, 4)),
     );
   });
-  const head = ["pose", "at rest", "hull faces", "count", "probability", "95 % interval", "quasi-static", "COM height", "barrier"];
+  const u = unitsOf(study);
+  const head = ["pose", "at rest", "hull faces", "count", "probability", "95 % interval", "quasi-static", `COM height (${u.length})`, `barrier (${u.length})`];
   app.append(
     el("h2", {}, "Poses"),
     el("table", { class: "poses" }, el("thead", {}, el("tr", {}, ...head.map((h) => el("th", {}, h)))), el("tbody", {}, ...rows)),

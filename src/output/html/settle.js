@@ -86,13 +86,15 @@ function buildPlayer(THREE, run, contactNames, parent) {
   const omega = f.t.map((_, i) => Math.hypot(f.omega[3 * i], f.omega[3 * i + 1], f.omega[3 * i + 2]));
   const total = f.t.map((_, i) => f.kinetic[i] + f.potential[i]);
   const box = () => plots.appendChild(el("div", { class: "plot" }));
+  const u = unitsOf(run.summary);
+  const tLabel = `t (${u.time})`;
   if (n > 0) {
     charts.push(
-      lineChart(box(), { title: "angular speed |ω|", xLabel: "t", yLabel: "rad / time", x: f.t, series: [{ label: "|ω|", values: omega, colour: "#1f77b4" }], cursor }),
+      lineChart(box(), { title: "angular speed |ω|", xLabel: tLabel, yLabel: `|ω| (${u.angular_speed})`, x: f.t, series: [{ label: `|ω| (${u.angular_speed})`, values: omega, colour: "#1f77b4" }], cursor }),
       lineChart(box(), {
-        title: "energies (mass · length² / time²; potential m·g·z of the centre of mass)",
-        xLabel: "t",
-        yLabel: "energy",
+        title: `energies (${u.energy}; potential m·g·z of the centre of mass)`,
+        xLabel: tLabel,
+        yLabel: `energy (${u.energy})`,
         x: f.t,
         series: [
           { label: "kinetic", values: f.kinetic, colour: "#d62728" },
@@ -108,7 +110,7 @@ function buildPlayer(THREE, run, contactNames, parent) {
     charts.push(
       lineChart(box(), {
         title: "contact type (" + used.map((c) => contactNames[c]).join(", ") + ")",
-        xLabel: "t",
+        xLabel: tLabel,
         yLabel: "",
         x: f.t,
         series: [{ label: "contact", values: f.contact, colour: "#7b3294" }],
@@ -124,21 +126,22 @@ function buildPlayer(THREE, run, contactNames, parent) {
 
 function summaryTable(summary) {
   const rest = summary.rest || {};
+  const u = unitsOf(summary);
   const rows = [
-    ["particle", `${summary.particle.source} (L = ${fmt(summary.particle.characteristic_length)}, mass ${fmt(summary.particle.mass)})`],
-    ["status", `${summary.status} after t = ${fmt(summary.time, 6)} (${summary.steps} steps)`],
+    ["particle", `${summary.particle.source} (L = ${fmt(summary.particle.characteristic_length)} ${u.length}, mass ${fmt(summary.particle.mass)} ${u.mass})`],
+    [summary.status === "rest" ? "at rest" : "not at rest", `${summary.status === "rest" ? "at" : `stopped (${summary.status}) at`} t = ${fmt(summary.time, 6)} ${u.time} (${summary.steps} steps)`],
   ];
   if (summary.status === "rest") {
     rows.push(["rests on", `${rest.contact}, hull face ${rest.face}, ${rest.contact_points.length} support points`]);
-    rows.push(["centre of mass at rest", `(${rest.com.map((x) => fmt(x, 6)).join(", ")}); face plane at ${fmt(rest.face_com_height, 6)}`]);
+    rows.push(["centre of mass at rest", `(${rest.com.map((x) => fmt(x, 6)).join(", ")}) ${u.length}; face plane ${fmt(rest.face_com_height, 6)} ${u.length} below it`]);
   }
-  if (summary.stable_time !== null) rows.push(["the paper's stability test", `passes at t = ${fmt(summary.stable_time, 6)}`]);
-  rows.push(["largest penetration", fmt(summary.max_penetration)]);
-  rows.push(["energy", `${fmt(summary.energy.start, 6)} → ${fmt(summary.energy.end, 6)}`]);
+  if (summary.stable_time !== null) rows.push(["the paper's stability test", `passes at t = ${fmt(summary.stable_time, 6)} ${u.time} (where the paper's run would stop)`]);
+  rows.push(["largest penetration", `${fmt(summary.max_penetration)} ${u.length}`]);
+  rows.push(["energy", `${fmt(summary.energy.start, 6)} → ${fmt(summary.energy.end, 6)} ${u.energy}`]);
   if (summary.impacts.length) rows.push(["impacts", `${summary.impacts.length}, ${summary.bounces} followed by a flight`]);
-  rows.push(["phases", summary.phases.map((p) => `${p.contact} [${fmt(p.t0)}, ${fmt(p.t1)}]`).join(" · ")]);
+  rows.push([`phases (${u.time})`, summary.phases.map((p) => `${p.contact} [${fmt(p.t0)}, ${fmt(p.t1)}]`).join(" · ")]);
   const p = summary.parameters;
-  rows.push(["parameters", `g = ${fmt(p.gravity)}, damping C = ${fmt(p.damping)}, ${p.integrator} integrator, restitution ${fmt(p.restitution)}, friction ${p.friction === null ? "no slip" : fmt(p.friction)}`]);
+  rows.push(["parameters", `g = ${fmt(p.gravity)} ${u.length}/${u.time}², damping C = ${fmt(p.damping)} ${u.damping}, ${p.integrator} integrator, restitution ${fmt(p.restitution)}, friction ${p.friction === null ? "no slip" : fmt(p.friction)}`]);
   return keyValueTable(rows);
 }
 
