@@ -339,6 +339,10 @@ Command add_poses_command(CLI::App& app) {
                   "Write a self-contained HTML report: every rest pose drawn at rest, with its probability "
                   "(one particle; docs/reports.md)");
   sub->add_flag("--json", o->json, "Print the JSON result instead of the table");
+  sub->footer(
+      "Exit codes: 0 done; 2 bad input; 3 some drops did not come to rest within --max-time/--max-steps (the "
+      "result is printed and written all the same); 130 interrupted by Ctrl-C (143 by SIGTERM): with --out, "
+      "rerunning the same command resumes.");
   return {sub, [o, sub]() { return run_poses(*o, *sub); }};
 }
 

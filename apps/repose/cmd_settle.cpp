@@ -194,6 +194,9 @@ Command add_settle_command(CLI::App& app) {
   sub->add_option("--frames", o->frames, "At most this many ParaView frames, evenly spread over the run")
       ->check(CLI::Range(2, 10000000));
   sub->add_flag("--json", o->json, "Print the JSON summary instead of text");
+  sub->footer(
+      "Exit codes: 0 at rest; 2 bad input; 3 stopped by --max-time or --max-steps before coming to rest (the "
+      "outputs are written all the same).");
   return {sub, [o, sub]() {
             check_output_options(*o, *sub);
             const RunSetup setup = resolve_setup(*o, *sub);

@@ -252,17 +252,21 @@ TEST_F(FirstHourCli, InterruptSaysWhatIsKeptAndTheRerunResumes) {
   EXPECT_GE(std::stoull(m[2].str()), saved["n"].get<std::uint64_t>());
 }
 
+// Without --out nothing is kept, and the message says how to keep it. SIGTERM (a batch system's kill) is
+// reported alike, with 128 + 15.
 TEST_F(FirstHourCli, InterruptWithoutOutSaysNothingIsKept) {
-  const fs::path err = dir_ / "err", code = dir_ / "code";
-  const std::string script =
-      shell_quote(REPOSE_CLI) + " poses " + kBox + " -n 10000000 2>" + shell_quote(err.string()) +
-      " & pid=$!; sleep 3; kill -INT $pid; wait $pid; echo $? >" + shell_quote(code.string());
-  std::system(("sh -c " + shell_quote(script)).c_str());
-  EXPECT_EQ(std::stoi(read_file(code)), 130);
-  EXPECT_TRUE(std::regex_match(
-      read_file(err), std::regex("repose: interrupted: [0-9]+ of 10000000 drops done and not kept \\(give "
-                                 "--out DIR to keep a checkpoint that a rerun resumes\\)\n")))
-      << read_file(err);
+  for (const auto& [signal, expected] : {std::pair{"INT", 130}, std::pair{"TERM", 143}}) {
+    const fs::path err = dir_ / signal, code = dir_ / (std::string(signal) + ".code");
+    const std::string script = shell_quote(REPOSE_CLI) + " poses " + kBox + " -n 10000000 2>" +
+                               shell_quote(err.string()) + " & pid=$!; sleep 3; kill -" + signal +
+                               " $pid; wait $pid; echo $? >" + shell_quote(code.string());
+    std::system(("sh -c " + shell_quote(script)).c_str());
+    EXPECT_EQ(std::stoi(read_file(code)), expected) << signal;
+    EXPECT_TRUE(std::regex_match(
+        read_file(err), std::regex("repose: interrupted: [0-9]+ of 10000000 drops done and not kept \\(give "
+                                   "--out DIR to keep a checkpoint that a rerun resumes\\)\n")))
+        << signal << ": " << read_file(err);
+  }
 }
 
 // 8. settle's text says which time answers what, what dt is, and which start orientation it used.
