@@ -10,12 +10,19 @@ namespace repose::sim {
 
 namespace {
 
-// Bounds that keep every loop finite; an integration that reaches them falls back to the frictionless law.
+// Bounds that keep every loop finite; an integration that reaches them falls back to the frictionless law
+// and says so (ImpactOutcome::fallback, counted in the run's result). With the step below, no impact reaches
+// it: the impact's impulse is a few times its scale, 256 steps each, plus one step per event.
 constexpr int kMaxSteps = 100000;
-// While the point slides its direction may turn: steps of at most 1/256 of the frictionless compression
-// impulse keep RK4's error far below round-off of the energy (the direction is constant in planar impacts,
-// where every step is exact).
+// While the point slides its direction may turn: steps of at most 1/256 of the impact's impulse scale keep
+// RK4's error far below round-off of the energy (the direction is constant in planar impacts, where every
+// step is exact). The scale is the larger of the frictionless compression impulse and the normal impulse
+// that stops the initial slip: a grazing impact (u_n ≪ u_t) with large μ compresses only once its slip has
+// stopped, after an impulse up to u_t/(μ·λ_min(K_tt)), however small u_n.
 constexpr int kStepsPerImpulse = 256;
+// A restitution that ends short of its energy target is continued; steps below this fraction of the normal
+// impulse are round-off, and the target is met.
+constexpr double kNegligibleStep = 1e-15;
 constexpr int kResumeHalvings = 200;  // c is bracketed to round-off long before
 constexpr int kMaxSweeps = 10000;     // Gauss–Seidel sweeps of impulse_centre
 
@@ -65,8 +72,17 @@ ImpactOutcome collide(double mass, const Mat3& inertia, const Vec3& r, const Mot
   const Vec2 ktn = K.block<2, 1>(0, 2);
   const Vec2 stuck_rate = -ktt.ldlt().solve(ktn);  // dP_t/dp that keeps a stuck point stuck
   const double e = law.restitution, mu = law.friction;
-  const double p_scale = -u0.z() / K(2, 2);           // the frictionless compression impulse
   const double u_tiny = tol::kTinySpeed * u0.norm();  // speeds below this are zero (round-off of u0)
+  const double compression_scale = -u0.z() / K(2, 2);  // the frictionless compression impulse
+  // K_tt is symmetric positive definite: its smaller eigenvalue in closed form.
+  const double ktt_min = 0.5 * (ktt(0, 0) + ktt(1, 1)) -
+                         std::hypot(0.5 * (ktt(0, 0) - ktt(1, 1)), ktt(0, 1));
+  // A jam: sliding, friction drives the point into the wall (du_n/dp = K_nn − μ·K_nt·ŝ ≤ 0), so compression
+  // cannot end before the slip stops.
+  const Vec2 slip0 = u0.head<2>();
+  const bool jam = std::isfinite(mu) && mu > 0 && ktt_min > 0 && slip0.norm() > u_tiny &&
+                   K(2, 2) - mu * K.block<1, 2>(2, 0).dot(slip0.normalized()) <= 0;
+  const double p_scale = jam ? std::max(compression_scale, slip0.norm() / (mu * ktt_min)) : compression_scale;
 
   auto velocity = [&](const Vec3& P) { return Vec3(u0 + K * P); };
   Vec3 P = Vec3::Zero();
@@ -82,10 +98,11 @@ ImpactOutcome collide(double mass, const Mat3& inertia, const Vec3& r, const Mot
   if (sticking) P.head<2>() = -ktt.ldlt().solve(u0.head<2>());  // no slip: sliding stops at once
   bool resumed = false;
   Vec2 resume = Vec2::Zero();
+  double cap = INFINITY;  // the longest step, halved where a step overshot the end of separation
 
   for (int step = 0; !done; ++step) {
-    if (step == kMaxSteps) {  // not ended (a slide that never compresses fully): the frictionless law
-      const Vec3 impulse(0, 0, (1 + e) * p_scale);
+    if (step == kMaxSteps) {  // not ended (see kMaxSteps): the frictionless law, flagged
+      const Vec3 impulse(0, 0, (1 + e) * compression_scale);
       out.after = apply(mass, inverse, r, before, impulse);
       out.impulse = impulse;
       out.speed_after = velocity(impulse);
@@ -132,7 +149,7 @@ ImpactOutcome collide(double mass, const Mat3& inertia, const Vec3& r, const Mot
     const Vec3 du = K * dP;
     // The step: at most h, and no further than the first event on the rates at its start (exact when the
     // sliding direction does not turn).
-    double dp = p_scale / kStepsPerImpulse;
+    double dp = std::min(p_scale / kStepsPerImpulse, cap);
     enum { none, stops, compressed, finished } event = none;
     const double slowing = s0.dot(du.head<2>());
     if (mu > 0 && slide > u_tiny && slowing < 0 && slide / -slowing <= dp) {
@@ -144,18 +161,24 @@ ImpactOutcome collide(double mass, const Mat3& inertia, const Vec3& r, const Mot
       event = compressed;
     }
     if (restitution) {
+      // The impulse at which the work b·Δ + ½·a·Δ² reaches `need` (the smaller root); where the normal
+      // velocity falls too fast for that (a < 0, friction), where it reaches zero: no more work can be done.
       const double need = std::max(0.0, target - work);
       const double a = du.z(), b = std::max(u.z(), 0.0);
+      const double discriminant = b * b + 2 * a * need;
       // Nothing left to do (a grazing impact whose compression did no work) ends at once, not at 0/0.
-      const double to_end = need <= 0 ? 0.0
-                            : a > 0   ? need / (0.5 * (b + std::sqrt(b * b + 2 * a * need)))
-                            : b > 0   ? need / b
-                                      : INFINITY;
+      const double to_end = need <= 0             ? 0.0
+                            : discriminant >= 0 && (a != 0 || b > 0)
+                                ? need / (0.5 * (b + std::sqrt(discriminant)))
+                            : a < 0 ? b / -a
+                                    : INFINITY;
       if (to_end <= dp) {
         dp = to_end;
         event = finished;
       }
     }
+    const Vec3 P_start = P;
+    const double work_start = work;
     // RK4 on (P, work) over dp.
     auto f = [&](const Vec3& at) { return std::pair<Vec3, double>(rate(at), velocity(at).z()); };
     const auto [k1, w1] = f(P);
@@ -164,6 +187,14 @@ ImpactOutcome collide(double mass, const Mat3& inertia, const Vec3& r, const Mot
     const auto [k4, w4] = f(P + dp * k3);
     P += dp / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
     work += dp / 6 * (w1 + 2 * w2 + 2 * w3 + w4);
+    if (event == finished && velocity(P).z() < -u_tiny) {
+      // The point's normal velocity fell through zero within the step (the direction turned): the step is
+      // taken again, halved, so that restitution ends where separation ends, not beyond it.
+      P = P_start;
+      work = work_start;
+      cap = 0.5 * dp;
+      continue;
+    }
     resumed = resumed && event != stops;
     switch (event) {
       case stops:
@@ -178,7 +209,12 @@ ImpactOutcome collide(double mass, const Mat3& inertia, const Vec3& r, const Mot
         if (velocity(P).z() >= -u_tiny) end_compression();
         break;
       case finished:
-        done = work >= target - tol::kEnergyMet * std::abs(target) || velocity(P).z() > 0;
+        // The step was predicted on the rates at its start: where the sliding direction turned within it,
+        // the work may still fall short of the target, and restitution goes on (a shorter step each time).
+        // It ends when the target is met, when the point no longer separates (no more work can be done), or
+        // when what is left is round-off.
+        done = work >= target - tol::kEnergyMet * std::abs(target) || !(velocity(P).z() > 0) ||
+               dp <= kNegligibleStep * P.z();
         break;
       case none:
         break;

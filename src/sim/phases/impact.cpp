@@ -53,6 +53,7 @@ Impact::Outcome Impact::resolve(const Motion& motion) {
     record.tangential_speed_after = out.speed_after.head<2>().norm();
     record.stick = out.stick;
     record.points = static_cast<int>(approaching_.size());
+    record.frictionless_fallback = out.fallback;
     record.energy_before = sim::kinetic_energy(body.mass, inertia, m) + potential;
     m = out.after;
     record.energy_after = sim::kinetic_energy(body.mass, inertia, m) + potential;
