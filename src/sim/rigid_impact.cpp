@@ -14,12 +14,12 @@ namespace {
 // and says so (ImpactOutcome::fallback, counted in the run's result). With the step below, no impact reaches
 // it: the impact's impulse is a few times its scale, 256 steps each, plus one step per event.
 constexpr int kMaxSteps = 100000;
-// While the point slides its direction may turn: steps of at most 1/256 of the impact's impulse scale keep
-// RK4's error far below round-off of the energy (the direction is constant in planar impacts, where every
-// step is exact). The scale is the larger of the frictionless compression impulse and the normal impulse
-// that stops the initial slip: a grazing impact (u_n ≪ u_t) with large μ compresses only once its slip has
-// stopped, after an impulse up to u_t/(μ·λ_min(K_tt)), however small u_n.
+// While the point slides its direction may turn: steps of at most 1/256 of the frictionless compression
+// impulse keep RK4's error far below round-off of the energy (the direction is constant in planar impacts,
+// where every step is exact). An impact not ended after kFineSteps steps is a jam (below): its steps grow to
+// 1/256 of the impulse that stops its slip.
 constexpr int kStepsPerImpulse = 256;
+constexpr int kFineSteps = 2048;
 // A restitution that ends short of its energy target is continued; steps below this fraction of the normal
 // impulse are round-off, and the target is met.
 constexpr double kNegligibleStep = 1e-15;
@@ -72,17 +72,13 @@ ImpactOutcome collide(double mass, const Mat3& inertia, const Vec3& r, const Mot
   const Vec2 ktn = K.block<2, 1>(0, 2);
   const Vec2 stuck_rate = -ktt.ldlt().solve(ktn);  // dP_t/dp that keeps a stuck point stuck
   const double e = law.restitution, mu = law.friction;
-  const double u_tiny = tol::kTinySpeed * u0.norm();  // speeds below this are zero (round-off of u0)
+  const double u_tiny = tol::kTinySpeed * u0.norm();   // speeds below this are zero (round-off of u0)
   const double compression_scale = -u0.z() / K(2, 2);  // the frictionless compression impulse
-  // K_tt is symmetric positive definite: its smaller eigenvalue in closed form.
-  const double ktt_min = 0.5 * (ktt(0, 0) + ktt(1, 1)) -
-                         std::hypot(0.5 * (ktt(0, 0) - ktt(1, 1)), ktt(0, 1));
-  // A jam: sliding, friction drives the point into the wall (du_n/dp = K_nn − μ·K_nt·ŝ ≤ 0), so compression
-  // cannot end before the slip stops.
-  const Vec2 slip0 = u0.head<2>();
-  const bool jam = std::isfinite(mu) && mu > 0 && ktt_min > 0 && slip0.norm() > u_tiny &&
-                   K(2, 2) - mu * K.block<1, 2>(2, 0).dot(slip0.normalized()) <= 0;
-  const double p_scale = jam ? std::max(compression_scale, slip0.norm() / (mu * ktt_min)) : compression_scale;
+  // The normal impulse that stops the initial slip at the slowest (K_tt is symmetric positive definite: its
+  // smaller eigenvalue in closed form).
+  const double ktt_min = 0.5 * (ktt(0, 0) + ktt(1, 1)) - std::hypot(0.5 * (ktt(0, 0) - ktt(1, 1)), ktt(0, 1));
+  const double slip_scale =
+      mu > 0 && std::isfinite(mu) && ktt_min > 0 ? u0.head<2>().norm() / (mu * ktt_min) : 0.0;
 
   auto velocity = [&](const Vec3& P) { return Vec3(u0 + K * P); };
   Vec3 P = Vec3::Zero();
@@ -149,7 +145,12 @@ ImpactOutcome collide(double mass, const Mat3& inertia, const Vec3& r, const Mot
     const Vec3 du = K * dP;
     // The step: at most h, and no further than the first event on the rates at its start (exact when the
     // sliding direction does not turn).
-    double dp = std::min(p_scale / kStepsPerImpulse, cap);
+    double dp = compression_scale / kStepsPerImpulse;
+    // A slide that must stop before compression can end (a jam: friction drives the point into the wall, a
+    // grazing impact with large μ) needs an impulse up to u_t/(μ·λ_min(K_tt)), which may be a thousand times
+    // the compression impulse: after kFineSteps steps the step grows to 1/256 of that.
+    if (step >= kFineSteps) dp = std::max(dp, slip_scale / kStepsPerImpulse);
+    dp = std::min(dp, cap);
     enum { none, stops, compressed, finished } event = none;
     const double slowing = s0.dot(du.head<2>());
     if (mu > 0 && slide > u_tiny && slowing < 0 && slide / -slowing <= dp) {
@@ -167,7 +168,7 @@ ImpactOutcome collide(double mass, const Mat3& inertia, const Vec3& r, const Mot
       const double a = du.z(), b = std::max(u.z(), 0.0);
       const double discriminant = b * b + 2 * a * need;
       // Nothing left to do (a grazing impact whose compression did no work) ends at once, not at 0/0.
-      const double to_end = need <= 0             ? 0.0
+      const double to_end = need <= 0 ? 0.0
                             : discriminant >= 0 && (a != 0 || b > 0)
                                 ? need / (0.5 * (b + std::sqrt(discriminant)))
                             : a < 0 ? b / -a
