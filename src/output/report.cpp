@@ -93,7 +93,7 @@ std::string settle_summary_json(const Particle& particle, const SettleParams& pa
                        {"energy_before", i.energy_before},
                        {"energy_after", i.energy_after},
                        {"rebound", i.rebound},
-                       {"frictionless_fallback", i.frictionless_fallback}});
+                       {"unresolved", i.unresolved}});
   j["impacts"] = impacts;
   j["bounces"] = r.bounces;
   j["energy"] = {{"start", r.energy_start}, {"end", r.energy_end}};

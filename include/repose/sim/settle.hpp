@@ -69,9 +69,10 @@ struct ImpactRecord {
   double energy_before = 0;  ///< kinetic + potential (mass·length²/time²)
   double energy_after = 0;
   bool rebound = false;  ///< a flight followed (else the paper's rotation took over: the hand-over)
-  /// The frictional impact law did not end within its step bound and the frictionless law was used instead
-  /// (never seen in the test suite's impacts; reported so that it cannot pass unnoticed).
-  bool frictionless_fallback = false;
+  /// The impact law did not meet its tolerance within its bound (one point: the frictional integration's step
+  /// bound, and the frictionless law was used; several: Gauss–Seidel's sweep bound). Never seen in the test
+  /// suite's impacts; reported so that it cannot pass unnoticed.
+  bool unresolved = false;
 };
 
 struct SettleResult {

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <optional>
 
+#include "../multi_impact.hpp"
+
 namespace repose::sim {
 
 namespace {
@@ -39,23 +41,49 @@ Impact::Outcome Impact::resolve(const Motion& motion) {
     for (const Vec3& arm : arms_)
       if (normal_speed(arm) < -v_tol) approaching_.push_back(arm);
     if (approaching_.empty()) break;
-    const std::optional<Vec3> centre = approaching_.size() == 1
-                                           ? std::optional<Vec3>(approaching_[0])
-                                           : impulse_centre(body.mass, inertia, approaching_, m);
-    if (!centre) break;
-    const ImpactOutcome out = collide(body.mass, inertia, *centre, m, law_);
     ImpactRecord record;
     record.t = run.t;
-    record.point = run.com + *centre;
-    record.normal_speed_before = out.speed_before.z();
-    record.normal_speed_after = out.speed_after.z();
-    record.tangential_speed_before = out.speed_before.head<2>().norm();
-    record.tangential_speed_after = out.speed_after.head<2>().norm();
-    record.stick = out.stick;
     record.points = static_cast<int>(approaching_.size());
-    record.frictionless_fallback = out.fallback;
     record.energy_before = sim::kinetic_energy(body.mass, inertia, m) + potential;
-    m = out.after;
+    if (approaching_.size() > 1 && std::isfinite(law_.friction)) {
+      // Several points with finite friction: Coulomb at each of them (multi_impact.hpp), over every point on
+      // the wall (one not approaching takes an impulse only if the others' push it into the wall).
+      const MultiImpactOutcome out = collide_points(body.mass, inertia, arms_, m, law_);
+      Vec3 centre = Vec3::Zero();
+      double total = 0;
+      bool stick = true;
+      for (std::size_t i = 0; i < arms_.size(); ++i) {
+        centre += out.impulses[i].z() * arms_[i];
+        total += out.impulses[i].z();
+        if (out.impulses[i].z() > 0) stick = stick && out.speed_after[i].head<2>().norm() <= v_tol;
+      }
+      centre = total > 0 ? Vec3(centre / total) : approaching_[0];
+      const Vec3 before = m.velocity + m.omega.cross(centre),
+                 after = out.after.velocity + out.after.omega.cross(centre);
+      record.point = run.com + centre;
+      record.normal_speed_before = before.z();
+      record.normal_speed_after = after.z();
+      record.tangential_speed_before = before.head<2>().norm();
+      record.tangential_speed_after = after.head<2>().norm();
+      record.stick = stick;
+      record.unresolved = !out.converged;
+      m = out.after;
+    } else {
+      // One point (Stronge's law), or several without slip: the one-point law at their impulses' centre.
+      const std::optional<Vec3> centre = approaching_.size() == 1
+                                             ? std::optional<Vec3>(approaching_[0])
+                                             : impulse_centre(body.mass, inertia, approaching_, m);
+      if (!centre) break;
+      const ImpactOutcome out = collide(body.mass, inertia, *centre, m, law_);
+      record.point = run.com + *centre;
+      record.normal_speed_before = out.speed_before.z();
+      record.normal_speed_after = out.speed_after.z();
+      record.tangential_speed_before = out.speed_before.head<2>().norm();
+      record.tangential_speed_after = out.speed_after.head<2>().norm();
+      record.stick = out.stick;
+      record.unresolved = out.fallback;
+      m = out.after;
+    }
     record.energy_after = sim::kinetic_energy(body.mass, inertia, m) + potential;
     impacts.push_back(record);
   }

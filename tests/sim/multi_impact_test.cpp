@@ -1,0 +1,116 @@
+// Several points striking the wall at once with Coulomb friction at each (src/sim/multi_impact.hpp), against
+// closed forms worked out here for a unit cube (m = 1, edge 1, I = 1/6 about every axis through its centre)
+// landing on its bottom face's four corners (arms (±1/2, ±1/2, −1/2)).
+#include "../../src/sim/multi_impact.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace repose::sim {
+namespace {
+
+const Mat3 kCubeInertia = Mat3::Identity() / 6;
+
+std::vector<Vec3> bottom_corners() {
+  std::vector<Vec3> corners;
+  for (double x : {-0.5, 0.5})
+    for (double y : {-0.5, 0.5}) corners.emplace_back(x, y, -0.5);
+  return corners;
+}
+
+// A cube landing flat (v_z = −1) while spinning about z at ω: by symmetry each corner takes λ = m·v/4 and,
+// while it slides (its slip ω·r along the circle of radius r = √2/2), a friction impulse μ·λ against it. The
+// torsional impulse 4·μ·(m·v/4)·r = μ·m·v·r takes Δω = μ·m·v·r/I = 6·μ·v·r = 3√2·μ·v off the spin, or stops
+// it. The impulses' centre (the old rule) gave no torsion at all: ω stayed 4.
+TEST(MultiImpact, SpinningFaceLandingFlatLosesSpinToTorsionalFriction) {
+  for (const double mu : {0.1, 0.5, 2.0}) {
+    const Motion before{Vec3(0, 0, -1), Vec3(0, 0, 4)};
+    const MultiImpactOutcome out = collide_points(1.0, kCubeInertia, bottom_corners(), before, {0.0, mu});
+    ASSERT_TRUE(out.converged);
+    const double expected = std::max(0.0, 4 - 3 * std::sqrt(2.0) * mu);
+    // Every quantity is the fixed point of a linear map per block: round-off, 1e-12 of the speeds.
+    EXPECT_NEAR(out.after.omega.z(), expected, 1e-12) << "mu " << mu;
+    EXPECT_NEAR(out.after.velocity.norm(), 0, 1e-12) << "mu " << mu;
+    EXPECT_NEAR(out.after.omega.head<2>().norm(), 0, 1e-12) << "mu " << mu;
+    for (const Vec3& u : out.speed_after) EXPECT_NEAR(u.z(), 0, 1e-12);
+  }
+}
+
+// A cube landing flat while sliding, v = (1, 0, −1), E = 0: all four corners slide the same way, so the
+// friction impulse is μ·m·v_n = μ against the slip and v_x falls to 1 − μ. Its moment about the centre of
+// mass (μ·1/2 about y) is taken up by more normal impulse at the front corners than at the back, which stay
+// pressed while μ·h ≤ b/2 (here μ ≤ 1): no pitch, ω = 0. The impulses' centre with the one-point law pitched
+// the cube (ω_y 1.05 at μ = 0.3).
+TEST(MultiImpact, FaceLandingWhileSlidingDoesNotPitch) {
+  for (const double mu : {0.3, 0.8}) {
+    const Motion before{Vec3(1, 0, -1), Vec3::Zero()};
+    const MultiImpactOutcome out = collide_points(1.0, kCubeInertia, bottom_corners(), before, {0.0, mu});
+    ASSERT_TRUE(out.converged);
+    EXPECT_NEAR(out.after.velocity.x(), 1 - mu, 1e-12) << mu;
+    EXPECT_NEAR(out.after.velocity.y(), 0, 1e-12) << mu;
+    EXPECT_NEAR(out.after.velocity.z(), 0, 1e-12) << mu;
+    EXPECT_NEAR(out.after.omega.norm(), 0, 1e-12) << mu;
+    // The normal impulses: 1/2 ± μ/2 on the front and back pairs (moment balance about y: the friction's
+    // μ·1/2 against (front − back)·1/2). How each pair shares its part is not determined (four corners, three
+    // constraints), only the sums.
+    double front = 0, back = 0;
+    for (std::size_t i = 0; i < 4; ++i) (bottom_corners()[i].x() > 0 ? front : back) += out.impulses[i].z();
+    EXPECT_NEAR(front, 0.5 + mu / 2, 1e-12) << mu;
+    EXPECT_NEAR(back, 0.5 - mu / 2, 1e-12) << mu;
+  }
+}
+
+// Friction large enough to stop the slide within the impact: the cube ends at rest (sticking at all four).
+TEST(MultiImpact, FaceLandingWithEnoughFrictionSticks) {
+  const Motion before{Vec3(0.5, 0.2, -1), Vec3(0, 0, 0.3)};
+  const MultiImpactOutcome out = collide_points(1.0, kCubeInertia, bottom_corners(), before, {0.0, 1.5});
+  ASSERT_TRUE(out.converged);
+  EXPECT_NEAR(out.after.velocity.norm(), 0, 1e-12);
+  EXPECT_NEAR(out.after.omega.norm(), 0, 1e-12);
+}
+
+// Frictionless: a flat landing keeps its horizontal velocity and spin (no tangential impulse anywhere), and
+// Poisson's E at each corner sends the cube up at E·v.
+TEST(MultiImpact, FrictionlessFlatLandingReboundsStraightUpAtE) {
+  const Motion before{Vec3(0.7, -0.3, -2), Vec3(0, 0, 1.5)};
+  const MultiImpactOutcome out = collide_points(1.0, kCubeInertia, bottom_corners(), before, {0.5, 0.0});
+  EXPECT_NEAR(out.after.velocity.x(), 0.7, 1e-12);
+  EXPECT_NEAR(out.after.velocity.y(), -0.3, 1e-12);
+  EXPECT_NEAR(out.after.velocity.z(), 1.0, 1e-12);
+  EXPECT_NEAR(out.after.omega.z(), 1.5, 1e-12);
+  EXPECT_NEAR(out.after.omega.head<2>().norm(), 0, 1e-12);
+}
+
+// Random bodies landing on random sets of 2 to 8 points (a face's polygon at random heights of the arms):
+// no impact creates kinetic energy, none leaves a struck point approaching after a plastic impact, and every
+// impulse is in its friction cone.
+TEST(MultiImpact, NoMultiPointImpactCreatesEnergy) {
+  std::mt19937_64 rng(99);
+  std::uniform_real_distribution<double> u(-1, 1), unit(0, 1);
+  for (int k = 0; k < 2000; ++k) {
+    const Vec3 moments(0.05 + unit(rng), 0.05 + unit(rng), 0.05 + unit(rng));
+    const Mat3 R = Quat(Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
+    const Mat3 inertia = R * moments.asDiagonal() * R.transpose();
+    const double m = 0.3 + unit(rng), e = k % 2 ? 0.0 : unit(rng), mu = 2 * unit(rng);
+    const double depth = -0.1 - unit(rng);
+    std::vector<Vec3> arms(2 + k % 7);
+    for (Vec3& a : arms) a = Vec3(u(rng), u(rng), depth);
+    const Motion before{Vec3(2 * u(rng), 2 * u(rng), -0.2 - 2 * unit(rng)), Vec3(u(rng), u(rng), u(rng)) * 3};
+    const MultiImpactOutcome out = collide_points(m, inertia, arms, before, {e, mu});
+    const double k0 = kinetic_energy(m, inertia, before), k1 = kinetic_energy(m, inertia, out.after);
+    ASSERT_LE(k1, k0 * (1 + 1e-12)) << "impact " << k;
+    for (std::size_t i = 0; i < arms.size(); ++i) {
+      ASSERT_GE(out.impulses[i].z(), -1e-12) << "impact " << k;
+      ASSERT_LE(out.impulses[i].head<2>().norm(), mu * out.impulses[i].z() * (1 + 1e-9) + 1e-14)
+          << "impact " << k;
+      if (e == 0 && out.converged) {
+        ASSERT_GE(out.speed_after[i].z(), -1e-9) << "impact " << k << " point " << i;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace repose::sim
