@@ -1,0 +1,57 @@
+// Internal: the frictional contact problem of a rigid body touching the wall z = 0 at several points, at the
+// velocity level (impulses: multi_impact.cpp) or at the acceleration level (forces: contact_forces.cpp).
+//
+// Each point i (offset r_i from the centre of mass) has a value x_i = lin + ang × r_i + offset_i, the
+// point's velocity (lin, ang: the body's velocity and angular velocity) or its acceleration (lin, ang: the
+// body's linear and angular accelerations; offset: the centripetal part ω × (ω × r_i)). A reaction R_i at the
+// point changes lin by R_i/m and ang by I⁻¹ (r_i × R_i). The rule of each point:
+//   unilateral    R_n ≥ 0, x_n ≥ 0, R_n·x_n = 0; the point sticks (x_t = 0, |R_t| ≤ μ·R_n) or slides
+//                 (R_t = −μ·R_n·ŝ with ŝ the direction of x_t): Coulomb's law, with the direction found.
+//   sliding       the point slides along a given ŝ: R_t = −μ·R_n·ŝ, R_n ≥ 0, x_n ≥ 0, complementary. Where
+//                 W_nn − μ·W_nt·ŝ ≤ 0 (friction would drive the point into the wall faster than the normal
+//                 reaction lifts it) and the point approaches, there is no consistent R_n (Painlevé): R_n = 0
+//                 and the case is counted.
+//   given_normal  R_n is given; R_t sticks if the cone μ·R_n allows, else slides (restitution).
+// Solved by block Gauss–Seidel over the points, each block exactly, until a sweep changes no point's value by
+// more than 1e-14 of the problem's scale: the values are then determined even where the reactions are not
+// (a face's four corners share three constraints).
+#pragma once
+
+#include <vector>
+
+#include "repose/geometry/types.hpp"
+
+namespace repose::sim {
+
+enum class PointRule { unilateral, sliding, given_normal };
+
+struct PointCondition {
+  PointRule rule = PointRule::unilateral;
+  Vec2 direction = Vec2::Zero();  ///< sliding: ŝ, a unit vector
+  double normal = 0;              ///< given_normal: R_n
+};
+
+struct ContactProblem {
+  double mass = 1;
+  Mat3 inverse_inertia = Mat3::Identity();  ///< world frame
+  std::vector<Vec3> arms;                   ///< r_i
+  std::vector<Vec3> offsets;                ///< empty: none
+  double friction = 0;                      ///< μ, finite
+  double scale = 1;                         ///< of the values, for the tolerances
+};
+
+struct ContactSolution {
+  std::vector<Vec3> reactions;
+  Vec3 lin = Vec3::Zero(), ang = Vec3::Zero();  ///< with the reactions
+  bool converged = true;                        ///< within the sweep bound
+  int painleve = 0;                             ///< sliding points with no consistent normal reaction
+};
+
+/// The reactions from the body's state (lin, ang) without them.
+ContactSolution solve_contacts(const ContactProblem& problem, const Vec3& lin, const Vec3& ang,
+                               const std::vector<PointCondition>& conditions);
+
+/// The value x_i of point i for (lin, ang).
+Vec3 point_value(const ContactProblem& problem, std::size_t i, const Vec3& lin, const Vec3& ang);
+
+}  // namespace repose::sim
