@@ -85,6 +85,11 @@ def mesh_and_normals(mesh_file, normals_file):
     return os.path.join(DATA, "meshes", mesh_file), MESH_OPTIONS.get(mesh_file, []), pairs
 
 
+def fit_key(name):
+    """(object, series) of the counts a fit on `name` uses: its first series in OBJECTS (None: no such object)."""
+    return next(((o[0], o[1]) for o in OBJECTS if o[0] == name), None)
+
+
 # The grid of the fit: restitution E (Stronge's energetic coefficient) and friction mu (inf: no slip).
 FIT_E = [0.1, 0.3, 0.5, 0.7, 0.9, 0.95]
 FIT_MU = [0.1, 0.3, 0.6, 1.0, math.inf]
@@ -100,7 +105,8 @@ def fit(a, counts):
     length = common.run_poses(a.repose, mesh, extra + ["--method", "quasi-static"], 1, a.threads)["particle"][
         "characteristic_length"]
     print(f"Fit of E and mu on {label} ({sum(measured)} throws), {a.fit_drops} drops per point: "
-          "log-likelihood of the counts (higher is better), chi-square p-value\n")
+          "log-likelihood of the counts (higher is better), chi-square p-value (of that one point: k − 1 degrees "
+          "of freedom, expected counts below 5 pooled, the point's Monte-Carlo error counted)\n")
     print("| E \\ mu | " + " | ".join("inf" if math.isinf(m) else f"{m:g}" for m in FIT_MU) + " |")
     print("|---|" + "---:|" * len(FIT_MU))
     best = None
@@ -110,7 +116,7 @@ def fit(a, counts):
             r = common.run_poses(a.repose, mesh, extra + common.toss_args(length, e, mu), a.fit_drops, a.threads)
             probs = common.outcome_probabilities(r, normals)
             loglik = sum(c * math.log(max(p, 1e-6)) for c, p in zip(measured, probs))
-            row.append(f"{loglik:.1f}, {common.p_value(measured, probs):.2g}")
+            row.append(f"{loglik:.1f}, {common.format_p(common.goodness_of_fit(measured, probs, r['n']), 2)}")
             if best is None or loglik > best[0]:
                 best = (loglik, e, mu)
         print(f"| {e:g} | " + " | ".join(row) + " |")
@@ -118,20 +124,27 @@ def fit(a, counts):
     print(f"\nBest: E = {best[1]:g}, mu = {best[2]:g}; used unchanged for every object below.\n")
 
 
-def print_table(label, labels, measured, predictions):
+def print_table(label, labels, measured, predictions, fitted_reason=""):
+    """One object's table; `predictions` are (name, probabilities by label, drops, parameters fitted on these
+    counts). Returns each prediction's Fit."""
     n = sum(measured)
+    fits = [common.goodness_of_fit(measured, probs, drops, fitted) for _, probs, drops, fitted in predictions]
     print(f"### {label}: {n} throws\n")
-    print("| outcome | measured | 95 % interval | " + " | ".join(p for p, _ in predictions) + " |")
+    print("| outcome | measured | 95 % interval | " + " | ".join(p[0] for p in predictions) + " |")
     print("|---|---:|---|" + "---:|" * len(predictions))
     for i, c in enumerate(measured):
         lo, hi = common.wilson(c, n)
         print(f"| {labels[i]} | {c / n:.3f} ({c}) | [{lo:.3f}, {hi:.3f}] | " +
-              " | ".join(f"{probs[i]:.3f}" for _, probs in predictions) + " |")
-    print("| χ² p-value | | | " + " | ".join(f"{common.p_value(measured, probs):.3g}" for _, probs in predictions)
-          + " |\n")
+              " | ".join(f"{p[1][i]:.3f}" for p in predictions) + " |")
+    print("| χ² p-value | | | " + " | ".join(common.format_p(f) for f in fits) + " |\n")
+    print(common.fits_note([p[0] for p in predictions], fits, [p[2] for p in predictions], labels, fitted_reason))
+    return fits
 
 
 def labelled_tables(a, counts, theirs):
+    """The tables of the labelled objects; returns the tossed model's common.Tested of each (none with
+    --no-toss). `a.fitted_on`: the (object, series) whose counts E and μ were fitted on, or None."""
+    tested = []
     for name, series, mesh_file, normals_file, label in OBJECTS:
         if a.only and name not in a.only.split(","):
             continue
@@ -139,7 +152,7 @@ def labelled_tables(a, counts, theirs):
         normals = [p["normal"] for p in pairs]
         measured = counts[(name, series)]
         labels = [str(i) for i in range(len(measured))]
-        order = list(range(len(normals)))  # row i of the table is outcome normal order[i]
+        orders = [list(range(len(normals)))]  # under labelling o, row i of the table is outcome normal o[i]
         if name.startswith("hendecahedron_2d6"):
             labels = SUM_CLASSES
             grouped = [0] * len(labels)
@@ -148,7 +161,7 @@ def labelled_tables(a, counts, theirs):
             measured = grouped
         quasi, rest, toss = common.three_predictions(a, mesh, extra, a.drops)
 
-        def rows(probs, name=name, pairs=pairs):
+        def rows(probs, order, name=name, pairs=pairs):
             if name.startswith("hendecahedron_2d6"):  # the normals' sums, grouped by designed probability
                 out = [0.0] * len(SUM_CLASSES)
                 for p, pair in zip(probs, pairs):
@@ -156,20 +169,39 @@ def labelled_tables(a, counts, theirs):
                 return out
             return [probs[k] for k in order]
 
+        def label_list(order, normals=normals):
+            return [order.index(i) + 1 for i in range(len(normals))]
+
         if name in LABELS_FROM_OURS:
             labels = [str(i + 1) for i in range(len(measured))]
             exact = common.outcome_probabilities(quasi, normals, "quasi_static_probability")
             ours = theirs[(name, series)]
-            order = list(min(itertools.permutations(range(len(normals))),
-                             key=lambda perm: sum((exact[perm[j]] - ours[j]) ** 2 for j in range(len(ours)))))
-            print(f"{label}: outcome normals → labels {[order.index(i) + 1 for i in range(len(normals))]} "
-                  f"(repose quasi-static {[round(exact[k], 4) for k in order]}, the authors' {ours})\n")
-        predictions = [("quasi-static", rows(common.outcome_probabilities(quasi, normals))),
-                       ("dynamic, from rest (no rebound)", rows(common.outcome_probabilities(rest, normals)))]
+            orders = [list(o) for o in common.tied_labellings(exact, ours)]
+            tie = (f"; {len(orders)} labellings tie within the authors' rounding: "
+                   + " / ".join(str(label_list(o)) for o in orders)) if len(orders) > 1 else ""
+            print(f"{label}: outcome normals → labels {label_list(orders[0])} "
+                  f"(repose quasi-static {[round(exact[k], 4) for k in orders[0]]}, the authors' {ours}){tie}\n")
+        fitted = 2 if toss is not None and a.fitted_on == (name, series) else 0
+        runs = [("quasi-static", quasi, 0), ("dynamic, from rest (no rebound)", rest, 0)]
         if toss is not None:
-            predictions.append(("tossed, with rebound", rows(common.outcome_probabilities(toss, normals))))
-        print_table(label, labels, measured, predictions)
+            runs.append(("tossed, with rebound", toss, fitted))
+
+        def predictions(order, normals=normals):
+            return [(p, rows(common.outcome_probabilities(r, normals), order), r["n"], f) for p, r, f in runs]
+
+        reason = " (tossed: k − 1 − 2, E and μ were fitted on these counts)" if fitted else ""
+        fits = print_table(label, labels, measured, predictions(orders[0]), reason)
+        every = [fits] + [[common.goodness_of_fit(measured, probs, drops, f) for _, probs, drops, f in predictions(o)]
+                          for o in orders[1:]]
+        if len(orders) > 1:
+            print(f"p-values under the {len(orders)} labellings the authors' values cannot tell apart (labels "
+                  + " / ".join(str(label_list(o)) for o in orders) + "): "
+                  + "; ".join(f"{p} " + " / ".join(common.format_p(fs[j]) for fs in every)
+                              for j, (p, _, _) in enumerate(runs)) + ".\n")
         print(common.unrested_note((rest, toss)), end="")
+        if toss is not None:
+            tested.append(common.Tested(label, [fs[-1] for fs in every], bool(fitted), "*" if len(orders) > 1 else ""))
+    return tested
 
 
 def bunny_table(a, counts):
@@ -199,7 +231,12 @@ def bunny_table(a, counts):
         lo, hi = common.wilson(c, n)
         print(f"| {i + 1} | {c / n:.3f} ({c}) | [{lo:.3f}, {hi:.3f}] | " +
               " | ".join(f"{probs[i]:.3f}" for probs in sorted_columns) + " |")
-    best = [max(common.p_value(measured, [probs[k] for k in perm])
-                for perm in itertools.permutations(range(len(measured)))) for _, probs in columns]
-    print("| χ² p-value, most favourable labelling | | | " + " | ".join(f"{p:.3g}" for p in best) + " |\n")
+    drops = [r["n"] for r in (quasi, rest, toss) if r is not None]
+    best = [max((common.goodness_of_fit(measured, [probs[k] for k in perm], d)
+                 for perm in itertools.permutations(range(len(measured)))), key=lambda f: f.p)
+            for (_, probs), d in zip(columns, drops)]
+    print("| χ² p-value, most favourable labelling | | | " + " | ".join(common.format_p(f) for f in best) + " |\n")
+    print("Under the most favourable labelling: "
+          + common.fits_note([c for c, _ in columns], best, drops, [str(i + 1) for i in range(len(measured))]))
     print(common.unrested_note((rest, toss)), end="")
+    return [common.Tested(label, [best[-1]], False, "†")] if toss is not None else []

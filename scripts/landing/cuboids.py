@@ -32,25 +32,37 @@ def square_probability(result):
 
 
 def table(a):
+    """The dice's table; returns the tossed model's common.Tested of each die (none with --no-toss)."""
     dice = load()
     names = ["quasi-static", "dynamic, from rest (no rebound)"] + ([] if a.no_toss else ["tossed, with rebound"])
     print(f"### Square cuboidal steel dice (Budden 1980): {len(dice)} dice, {sum(n for _, n, _ in dice)} rolls\n")
     print("p: the fraction of rolls ending on one of the two square faces. Each prediction's χ² p-value "
-          "(1 degree of freedom) in brackets.\n")
+          "(1 degree of freedom, the prediction's Monte-Carlo error counted) in brackets.\n")
     print("| x/y | rolls | measured p (count) | 95 % interval | " + " | ".join(names) + " |")
     print("|---:|---:|---:|---|" + "---:|" * len(names))
-    total, notes = [0.0] * len(names), []
+    total, dofs, drops, small, notes, tested = [0.0] * len(names), [0] * len(names), [0] * len(names), [], [], []
     for ratio, n, k in dice:
         runs = [r for r in common.three_predictions(a, f"box:x=1,y=1,z={ratio:g}", [], a.drops) if r is not None]
         lo, hi = common.wilson(k, n)
         cells = []
         for j, r in enumerate(runs):
             p = square_probability(r)
-            chi2 = common.chi2_statistic([k, n - k], [p, 1 - p])
-            total[j] += chi2
-            cells.append(f"{p:.3f} ({stats.chi2.sf(chi2, 1):.2g})")
+            fit = common.goodness_of_fit([k, n - k], [p, 1 - p], r["n"])
+            total[j] += fit.chi2
+            dofs[j] += fit.dof
+            drops[j] = r["n"]
+            if fit.min_expected < 5:
+                small.append(f"{names[j]} at x/y {ratio:.2f} ({fit.min_expected:.1f})")
+            cells.append(f"{p:.3f} ({common.format_p(fit, 2)})")
         print(f"| {ratio:.2f} | {n} | {k / n:.3f} ({k}) | [{lo:.3f}, {hi:.3f}] | " + " | ".join(cells) + " |")
         notes.append(common.unrested_note(runs[1:]))
-    print(f"| all {len(dice)} | | χ² ({len(dice)} degrees of freedom), p-value | | " +
-          " | ".join(f"{t:.1f}, {stats.chi2.sf(t, len(dice)):.2g}" for t in total) + " |\n")
+        if not a.no_toss:
+            tested.append(common.Tested(f"steel die x/y = {ratio:.2f} (Budden 1980)", [fit], False, ""))
+    dof = " / ".join(str(d) for d in dofs) if len(set(dofs)) > 1 else str(dofs[0])
+    print(f"| all {len(dice)} | | χ² ({dof} degrees of freedom), p-value | | " +
+          " | ".join(f"{t:.1f}, {stats.chi2.sf(t, d):.2g}" for t, d in zip(total, dofs)) + " |\n")
+    print(f"χ² with each prediction's Monte-Carlo error (N = {' / '.join(str(d) for d in drops)} drops): 1 degree "
+          "of freedom per die (2 outcomes, nothing fitted on these dice); two outcomes cannot be pooled"
+          + (f", expected counts below 5: {', '.join(small)}" if small else ", no expected count below 5") + ".\n")
     print("".join(notes), end="")
+    return tested
