@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace repose::sim {
 
@@ -21,11 +22,18 @@ constexpr double kConverged = 1e-14;
 // Below this fraction of the scale a value is zero (round-off).
 constexpr double kTiny = 1e-14;
 
+// What a sweep met: sliding points with no consistent normal reaction, points whose sliding direction was not
+// found.
+struct Counts {
+  int painleve = 0;
+  int unresolved = 0;
+};
+
 // The sliding reaction R = (−μλŝ, λ) of one point with x_n = 0 and ŝ the direction of its x_t with it:
 // x_t(ŝ) = f_t + λ(ŝ)·(W_tn − μ·W_tt·ŝ) with λ(ŝ) = −f_n / (W_nn − μ·W_nt·ŝ) must point along ŝ. A
 // fixed-point iteration from `guess` finds it in a few steps where the slip turns little; otherwise the angle
 // of ŝ is scanned (kScan samples) and the sign change of ŝ × u_t bisected.
-Vec3 sliding_reaction(const Mat3& W, const Vec3& f, double mu, double tiny, Vec2 s) {
+std::optional<Vec3> sliding_reaction(const Mat3& W, const Vec3& f, double mu, double tiny, Vec2 s) {
   const Eigen::Matrix2d wtt = W.topLeftCorner<2, 2>();
   const Vec2 wtn = W.block<2, 1>(0, 2), wnt = W.block<1, 2>(2, 0).transpose();
   const Vec2 ft = f.head<2>();
@@ -69,13 +77,13 @@ Vec3 sliding_reaction(const Mat3& W, const Vec3& f, double mu, double tiny, Vec2
     const Vec2 d = dir(0.5 * (lo + hi));
     if (slip_of(d).dot(d) > 0 || slip_of(d).norm() <= tiny) return impulse(d);
   }
-  return Vec3(0, 0, -f.z() / W(2, 2));  // none (not met in the tests): frictionless
+  return std::nullopt;  // none found (not met in the tests): the caller flags it
 }
 
 // One point's reaction given its value `f` without it (the others' reactions included) and its own block W of
 // the Delassus matrix (x = f + W·R), by its rule (contact_problem.hpp).
 Vec3 local_reaction(const Mat3& W, const Vec3& f, double mu, const PointCondition& c, double tiny,
-                    int& painleve) {
+                    Counts& counts) {
   const Eigen::Matrix2d wtt = W.topLeftCorner<2, 2>();
   const Vec2 wtn = W.block<2, 1>(0, 2);
   const Vec2 ft = f.head<2>();
@@ -83,7 +91,7 @@ Vec3 local_reaction(const Mat3& W, const Vec3& f, double mu, const PointConditio
     if (f.z() >= 0) return Vec3::Zero();
     const double d = W(2, 2) - mu * W.block<1, 2>(2, 0).dot(c.direction);
     if (!(d > 0)) {
-      ++painleve;
+      ++counts.painleve;
       return Vec3::Zero();
     }
     const double lambda = -f.z() / d;
@@ -95,8 +103,11 @@ Vec3 local_reaction(const Mat3& W, const Vec3& f, double mu, const PointConditio
     const Vec3 stick = -W.ldlt().solve(f);
     if (stick.z() > 0 && stick.head<2>().norm() <= mu * stick.z()) return stick;
     // Sliding: P = (−μλŝ, λ) with u_n = 0 and ŝ the direction of u_t after.
-    return sliding_reaction(W, f, mu, tiny,
-                            ft.norm() > tiny ? Vec2(ft.normalized()) : Vec2(-stick.head<2>().normalized()));
+    const std::optional<Vec3> sliding = sliding_reaction(
+        W, f, mu, tiny, ft.norm() > tiny ? Vec2(ft.normalized()) : Vec2(-stick.head<2>().normalized()));
+    if (sliding) return *sliding;
+    ++counts.unresolved;  // the frictionless plastic reaction instead
+    return Vec3(0, 0, -f.z() / W(2, 2));
   }
   // The normal impulse given: the tangential one that stops the slip, if the cone allows, else sliding.
   const Vec2 stick = -wtt.ldlt().solve(ft + wtn * normal);
@@ -139,10 +150,10 @@ ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const V
   for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
     std::vector<Vec3> at_start(n);
     for (std::size_t i = 0; i < n; ++i) at_start[i] = point_value(p, i, s.lin, s.ang);
-    s.painleve = 0;
+    Counts counts;
     for (std::size_t i = 0; i < n; ++i) {
       const Vec3 f = point_value(p, i, s.lin, s.ang) - diagonal[i] * s.reactions[i];
-      const Vec3 next = local_reaction(diagonal[i], f, p.friction, conditions[i], tiny, s.painleve);
+      const Vec3 next = local_reaction(diagonal[i], f, p.friction, conditions[i], tiny, counts);
       const Vec3 delta = next - s.reactions[i];
       s.lin += delta / p.mass;
       s.ang += p.inverse_inertia * p.arms[i].cross(delta);
@@ -151,7 +162,11 @@ ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const V
     double change = 0;
     for (std::size_t i = 0; i < n; ++i)
       change = std::max(change, (point_value(p, i, s.lin, s.ang) - at_start[i]).norm());
-    if (change <= kConverged * p.scale) return s;
+    s.painleve = counts.painleve;
+    if (change <= kConverged * p.scale) {
+      s.converged = counts.unresolved == 0;
+      return s;
+    }
   }
   s.converged = false;
   return s;

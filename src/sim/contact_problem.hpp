@@ -43,8 +43,10 @@ struct ContactProblem {
 struct ContactSolution {
   std::vector<Vec3> reactions;
   Vec3 lin = Vec3::Zero(), ang = Vec3::Zero();  ///< with the reactions
-  bool converged = true;                        ///< within the sweep bound
-  int painleve = 0;                             ///< sliding points with no consistent normal reaction
+  /// Within the sweep bound, and every sliding direction found (where one was not, not met in the tests, the
+  /// point took the frictionless plastic reaction).
+  bool converged = true;
+  int painleve = 0;  ///< sliding points with no consistent normal reaction
 };
 
 /// The reactions from the body's state (lin, ang) without them.

@@ -62,6 +62,20 @@ TEST(MultiImpact, FaceLandingWhileSlidingDoesNotPitch) {
   }
 }
 
+// The same landing with E = 0.5: restitution gives each corner half its compression normal impulse (0.5 in
+// all, the front pair 0.325, the back 0.175) with friction on the cone against the slip still left (0.7):
+// μ·0.5 = 0.15 more off v_x, and the pair's imbalance (0.325 − 0.175)·1/2 = 0.075 again balances the
+// friction's moment 0.15·1/2: v = (0.55, 0, 0.5), no rotation.
+TEST(MultiImpact, RestitutionWithFrictionKeepsSlidingWithoutPitch) {
+  const Motion before{Vec3(1, 0, -1), Vec3::Zero()};
+  const MultiImpactOutcome out = collide_points(1.0, kCubeInertia, bottom_corners(), before, {0.5, 0.3});
+  ASSERT_TRUE(out.converged);
+  EXPECT_NEAR(out.after.velocity.x(), 0.55, 1e-12);
+  EXPECT_NEAR(out.after.velocity.y(), 0, 1e-12);
+  EXPECT_NEAR(out.after.velocity.z(), 0.5, 1e-12);
+  EXPECT_NEAR(out.after.omega.norm(), 0, 1e-12);
+}
+
 // Friction large enough to stop the slide within the impact: the cube ends at rest (sticking at all four).
 TEST(MultiImpact, FaceLandingWithEnoughFrictionSticks) {
   const Motion before{Vec3(0.5, 0.2, -1), Vec3(0, 0, 0.3)};
