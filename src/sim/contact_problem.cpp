@@ -32,12 +32,16 @@ struct Counts {
 // The sliding reaction R = (−μλŝ, λ) of one point with x_n = 0 and ŝ the direction of its x_t with it:
 // x_t(ŝ) = f_t + λ(ŝ)·(W_tn − μ·W_tt·ŝ) with λ(ŝ) = −f_n / (W_nn − μ·W_nt·ŝ) must point along ŝ. A
 // fixed-point iteration from `guess` finds it in a few steps where the slip turns little; otherwise the angle
-// of ŝ is scanned (kScan samples) and the sign change of ŝ × u_t bisected.
-std::optional<Vec3> sliding_reaction(const Mat3& W, const Vec3& f, double mu, double tiny, Vec2 s) {
+// of ŝ is scanned (kScan samples) and the sign change of ŝ × u_t bisected. With `given_normal` ≥ 0, λ is that
+// (restitution) and x_n is whatever it gives.
+std::optional<Vec3> sliding_reaction(const Mat3& W, const Vec3& f, double mu, double tiny, Vec2 s,
+                                     double given_normal = -1) {
   const Eigen::Matrix2d wtt = W.topLeftCorner<2, 2>();
   const Vec2 wtn = W.block<2, 1>(0, 2), wnt = W.block<1, 2>(2, 0).transpose();
   const Vec2 ft = f.head<2>();
-  const auto lambda_of = [&](const Vec2& dir) { return -f.z() / (W(2, 2) - mu * wnt.dot(dir)); };
+  const auto lambda_of = [&](const Vec2& dir) {
+    return given_normal >= 0 ? given_normal : -f.z() / (W(2, 2) - mu * wnt.dot(dir));
+  };
   const auto slip_of = [&](const Vec2& dir) -> Vec2 { return ft + lambda_of(dir) * (wtn - mu * wtt * dir); };
   // ŝ is consistent: λ > 0 and the slip along it (or stopped, to round-off).
   const auto consistent = [&](const Vec2& dir) {
@@ -112,16 +116,11 @@ Vec3 local_reaction(const Mat3& W, const Vec3& f, double mu, const PointConditio
   // The normal impulse given: the tangential one that stops the slip, if the cone allows, else sliding.
   const Vec2 stick = -wtt.ldlt().solve(ft + wtn * normal);
   if (stick.norm() <= mu * normal) return Vec3(stick.x(), stick.y(), normal);
-  Vec2 s = ft.norm() > tiny ? Vec2(ft.normalized()) : Vec2(-stick.normalized());
-  for (int k = 0; k < kMaxDirectionIterations; ++k) {
-    const Vec2 ut = ft + wtn * normal - mu * normal * (wtt * s);
-    if (ut.norm() <= tiny) break;
-    const Vec2 next = ut.normalized();
-    const bool settled = (next - s).norm() <= 1e-15;
-    s = next;
-    if (settled) break;
-  }
-  return Vec3(-mu * normal * s.x(), -mu * normal * s.y(), normal);
+  const std::optional<Vec3> sliding = sliding_reaction(
+      W, f, mu, tiny, ft.norm() > tiny ? Vec2(ft.normalized()) : Vec2(-stick.normalized()), normal);
+  if (sliding) return *sliding;
+  ++counts.unresolved;  // no tangential reaction instead
+  return Vec3(0, 0, normal);
 }
 
 }  // namespace

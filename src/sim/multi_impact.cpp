@@ -10,7 +10,8 @@
 namespace repose::sim {
 
 namespace {
-// Halvings of the restitution's scale when Poisson's rule with friction would raise the energy.
+// Halvings of the restitution's normal impulses when Poisson's rule with friction would raise the energy
+// (after the last, none: the plastic impact alone).
 constexpr int kMaxScaleHalvings = 60;
 }  // namespace
 
@@ -34,25 +35,23 @@ MultiImpactOutcome collide_points(double mass, const Mat3& inertia, const std::v
   Motion after{compression.lin, compression.ang};
   std::vector<Vec3> total = compression.reactions;
   if (law.restitution > 0) {
-    // Restitution: Poisson's at each point, friction within μ times it.
-    std::vector<PointCondition> given(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      given[i].rule = PointRule::given_normal;
-      given[i].normal = law.restitution * compression.reactions[i].z();
-    }
-    const ContactSolution restitution = solve_contacts(problem, after.velocity, after.omega, given);
-    out.converged = out.converged && restitution.converged;
-    // Never above the energy before the impact: the restitution impulses halved until so.
+    // Restitution: Poisson's at each point, friction within μ times it; never above the energy before the
+    // impact: the normal impulses halved (and friction solved again) until so.
     const double limit = kinetic_energy(mass, inertia, before);
-    const Vec3 dv = restitution.lin - after.velocity, dw = restitution.ang - after.omega;
+    std::vector<PointCondition> given(n);
     double scale = 1;
-    for (int k = 0; k <= kMaxScaleHalvings; ++k, scale *= 0.5)
-      if (kinetic_energy(mass, inertia, {after.velocity + scale * dv, after.omega + scale * dw}) <= limit)
-        break;
-    if (kinetic_energy(mass, inertia, {after.velocity + scale * dv, after.omega + scale * dw}) > limit)
-      scale = 0;
-    after = {after.velocity + scale * dv, after.omega + scale * dw};
-    for (std::size_t i = 0; i < n; ++i) total[i] += scale * restitution.reactions[i];
+    for (int k = 0; k <= kMaxScaleHalvings; ++k, scale *= 0.5) {
+      for (std::size_t i = 0; i < n; ++i) {
+        given[i].rule = PointRule::given_normal;
+        given[i].normal = scale * law.restitution * compression.reactions[i].z();
+      }
+      const ContactSolution restitution = solve_contacts(problem, after.velocity, after.omega, given);
+      if (kinetic_energy(mass, inertia, {restitution.lin, restitution.ang}) > limit) continue;
+      out.converged = out.converged && restitution.converged;
+      for (std::size_t i = 0; i < n; ++i) total[i] += restitution.reactions[i];
+      after = {restitution.lin, restitution.ang};
+      break;
+    }
   }
   out.after = after;
   out.impulses = total;

@@ -7,7 +7,8 @@
 // Gauss–Seidel over the points, each block exactly (stick, or the sliding fixed point). Restitution is
 // Poisson's at each point, E times its compression normal impulse, with friction again within μ times it;
 // should that raise the kinetic energy above what the body had before (friction and Poisson's rule can, in
-// rare configurations), the restitution impulses are scaled down until it does not.
+// rare configurations), the restitution's normal impulses are halved, with friction solved again, until it
+// does not.
 //
 // One point alone keeps Stronge's law (rigid_impact.hpp): along the impulse, exact. Several points get the
 // friction of each of them, which the impulses' centre cannot give: a spinning face landing flat loses spin

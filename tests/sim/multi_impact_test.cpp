@@ -97,6 +97,35 @@ TEST(MultiImpact, FrictionlessFlatLandingReboundsStraightUpAtE) {
   EXPECT_NEAR(out.after.omega.head<2>().norm(), 0, 1e-12);
 }
 
+// Coulomb's law in restitution: the restitution impulse (the impact's with E, less the same impact's with
+// E = 0, whose compression is identical) lies on the cone against the point's final slip, P_t = −μ·P_n·û,
+// wherever the point still slides at the end. One point of an asymmetric body (anisotropic W_tt, so a wrong
+// direction rule shows), at random.
+TEST(MultiImpact, RestitutionFrictionOpposesTheFinalSlip) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1), unit(0, 1);
+  int checked = 0;
+  for (int k = 0; k < 500 && checked < 100; ++k) {
+    const Vec3 moments(0.05 + unit(rng), 0.05 + unit(rng), 0.05 + unit(rng));
+    const Mat3 R = Quat(Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
+    const Mat3 inertia = R * moments.asDiagonal() * R.transpose();
+    const std::vector<Vec3> arm = {Vec3(u(rng), u(rng), -0.1 - unit(rng))};
+    const Motion before{Vec3(3 * u(rng), 3 * u(rng), -1 - unit(rng)), Vec3(u(rng), u(rng), u(rng))};
+    const double mu = 0.05 + 0.3 * unit(rng), e = 0.3 + 0.6 * unit(rng);
+    const MultiImpactOutcome plastic = collide_points(1.0, inertia, arm, before, {0.0, mu});
+    const MultiImpactOutcome full = collide_points(1.0, inertia, arm, before, {e, mu});
+    const Vec2 slip = full.speed_after[0].head<2>();
+    if (slip.norm() < 0.1) continue;  // stopped, or nearly: the direction is not defined
+    const Vec3 restitution = full.impulses[0] - plastic.impulses[0];
+    if (!(restitution.z() > 1e-6)) continue;
+    ++checked;
+    const Vec2 expected = -mu * restitution.z() * slip.normalized();
+    EXPECT_NEAR((restitution.head<2>() - expected).norm(), 0, 1e-10 * (1 + restitution.norm()))
+        << "impact " << k;
+  }
+  EXPECT_GE(checked, 50);
+}
+
 // Random bodies landing on random sets of 2 to 8 points (a face's polygon at random heights of the arms):
 // no impact creates kinetic energy, none leaves a struck point approaching after a plastic impact, and every
 // impulse is in its friction cone.
