@@ -125,6 +125,12 @@ Vec3 local_reaction(const Mat3& W, const Vec3& f, double mu, const PointConditio
 
 }  // namespace
 
+Mat3 delassus_block(double mass, const Mat3& inverse_inertia, const Vec3& r) {
+  Mat3 rx;
+  rx << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
+  return Mat3::Identity() / mass - rx * inverse_inertia * rx;
+}
+
 Vec3 point_value(const ContactProblem& p, std::size_t i, const Vec3& lin, const Vec3& ang) {
   Vec3 x = lin + ang.cross(p.arms[i]);
   if (!p.offsets.empty()) x += p.offsets[i];
@@ -135,12 +141,7 @@ ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const V
                                const std::vector<PointCondition>& conditions) {
   const std::size_t n = p.arms.size();
   std::vector<Mat3> diagonal(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    Mat3 rx;
-    const Vec3& r = p.arms[i];
-    rx << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
-    diagonal[i] = Mat3::Identity() / p.mass - rx * p.inverse_inertia * rx;
-  }
+  for (std::size_t i = 0; i < n; ++i) diagonal[i] = delassus_block(p.mass, p.inverse_inertia, p.arms[i]);
   const double tiny = kTiny * p.scale;
   ContactSolution s;
   s.reactions.assign(n, Vec3::Zero());

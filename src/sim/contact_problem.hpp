@@ -53,6 +53,10 @@ struct ContactSolution {
 ContactSolution solve_contacts(const ContactProblem& problem, const Vec3& lin, const Vec3& ang,
                                const std::vector<PointCondition>& conditions);
 
+/// The Delassus block of a point r from the centre of mass: a unit reaction at r changes that point's
+/// velocity (or acceleration) by K·R, K = 1/m − [r]× I⁻¹ [r]×.
+Mat3 delassus_block(double mass, const Mat3& inverse_inertia, const Vec3& r);
+
 /// The value x_i of point i for (lin, ang).
 Vec3 point_value(const ContactProblem& problem, std::size_t i, const Vec3& lin, const Vec3& ang);
 

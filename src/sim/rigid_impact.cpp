@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "contact_problem.hpp"
 #include "events.hpp"
 #include "tolerances.hpp"
 
@@ -25,12 +26,6 @@ constexpr int kFineSteps = 2048;
 constexpr double kNegligibleStep = 1e-15;
 constexpr int kResumeHalvings = 200;  // c is bracketed to round-off long before
 constexpr int kMaxSweeps = 10000;     // Gauss–Seidel sweeps of impulse_centre
-
-Mat3 skew(const Vec3& a) {
-  Mat3 m;
-  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
-  return m;
-}
 
 // The one direction ŝ in which sliding starts again from rest when sticking needs more than μ: the
 // tangential velocity's rate K_tn − μ·K_tt·ŝ must be c·ŝ with c > 0, so ŝ = (μ·K_tt + c)⁻¹ K_tn with |ŝ| = 1;
@@ -66,8 +61,7 @@ ImpactOutcome collide(double mass, const Mat3& inertia, const Vec3& r, const Mot
   if (!(u0.z() < 0)) return out;
 
   const Mat3 inverse = inertia.inverse();
-  const Mat3 rx = skew(r);
-  const Mat3 K = Mat3::Identity() / mass - rx * inverse * rx;
+  const Mat3 K = delassus_block(mass, inverse, r);
   const Eigen::Matrix2d ktt = K.topLeftCorner<2, 2>();
   const Vec2 ktn = K.block<2, 1>(0, 2);
   const Vec2 stuck_rate = -ktt.ldlt().solve(ktn);  // dP_t/dp that keeps a stuck point stuck
