@@ -96,23 +96,33 @@ std::string settle_summary_json(const Particle& particle, const SettleParams& pa
                        {"unresolved", i.unresolved}});
   j["impacts"] = impacts;
   j["bounces"] = r.bounces;
-  j["energy"] = {{"start", r.energy_start}, {"end", r.energy_end}};
+  double impact_losses = 0;
+  for (const ImpactRecord& i : r.impacts) impact_losses += i.energy_before - i.energy_after;
+  // The ledger (finite friction): what friction, the damping moment of the frictional contact phase and the
+  // impacts took; with friction infinite the paper's phase's damping is not in it.
+  j["energy"] = {{"start", r.energy_start},
+                 {"end", r.energy_end},
+                 {"friction_work", r.friction_work},
+                 {"damping_work", r.damping_work},
+                 {"impact_losses", impact_losses}};
+  j["sliding_distance"] = r.sliding_distance;
+  j["painleve"] = r.painleve;
   j["unconverged_steps"] = r.unconverged_steps;
   return j.dump(2) + "\n";
 }
 
 std::string time_series_header() {
   return "t,qw,qx,qy,qz,omega_x,omega_y,omega_z,com_x,com_y,com_z,contact,contact_count,kinetic_energy,"
-         "potential_energy\n";
+         "potential_energy,sticking,sliding\n";
 }
 
 std::string time_series_row(const Sample& s) {
   char buf[512];
   std::snprintf(buf, sizeof buf,
-                "%.9g,%.12g,%.12g,%.12g,%.12g,%.9g,%.9g,%.9g,%.12g,%.12g,%.12g,%s,%d,%.9g,%.12g\n", s.t,
+                "%.9g,%.12g,%.12g,%.12g,%.12g,%.9g,%.9g,%.9g,%.12g,%.12g,%.12g,%s,%d,%.9g,%.12g,%d,%d\n", s.t,
                 s.orientation.w(), s.orientation.x(), s.orientation.y(), s.orientation.z(), s.omega.x(),
                 s.omega.y(), s.omega.z(), s.com.x(), s.com.y(), s.com.z(), to_string(s.contact),
-                s.contact_count, s.kinetic_energy, s.potential_energy);
+                s.contact_count, s.kinetic_energy, s.potential_energy, s.sticking, s.sliding);
   return buf;
 }
 

@@ -12,6 +12,7 @@
 
 #include <vector>
 
+#include "contact_problem.hpp"
 #include "rigid_impact.hpp"
 
 namespace repose::sim {
@@ -25,6 +26,7 @@ struct ContactForces {
   Vec3 angular_acceleration = Vec3::Zero();  ///< world frame
   bool converged = true;
   int painleve = 0;  ///< sliding points with no consistent normal force (Painlevé's paradox)
+  std::vector<char> inconsistent;  ///< which points those are (1: Painlevé's case at that point)
 };
 
 struct ContactBody {
@@ -34,8 +36,14 @@ struct ContactBody {
   double damping = 0;  ///< C of the paper's Eq 4
 };
 
-/// The forces at the points `arms` (on the wall) of the body moving with `motion`; friction μ finite.
+/// The forces at the points `arms` (on the wall) of the body moving with `motion`; friction μ finite. A
+/// point slides along its slip if that is faster than `slip_speed`, else it is at rest on the wall.
 ContactForces contact_forces(const ContactBody& body, const Motion& motion, const std::vector<Vec3>& arms,
                              double friction, double slip_speed);
+
+/// The same with each point's rule given (an event-driven phase keeps them between its events): `sliding`
+/// with its direction, or `unilateral` (at rest on the wall: it sticks or starts to slide).
+ContactForces contact_forces(const ContactBody& body, const Motion& motion, const std::vector<Vec3>& arms,
+                             double friction, const std::vector<PointCondition>& conditions);
 
 }  // namespace repose::sim

@@ -17,7 +17,9 @@ Engine::Engine(const Particle& particle, const SettleParams& params, const Quat&
   // start → flight: dropped from a height, or tossed; start → contact: on the wall at t = 0.
   const SettleParams& p = run_.params;
   const Vec3 velocity = p.velocity - Vec3(0, 0, p.drop_speed);
-  if (p.drop_height > 0 || p.velocity != Vec3::Zero() || p.spin != Vec3::Zero())
+  if (frictional() && p.drop_height == 0)
+    start_frictional({velocity, p.spin});  // on the wall, with whatever motion it was given
+  else if (p.drop_height > 0 || p.velocity != Vec3::Zero() || p.spin != Vec3::Zero())
     start_flight(velocity, p.spin, p.drop_height);
   else
     start_contact(Vec3(0, 0, -p.drop_speed), Vec3::Zero(), false);
@@ -25,10 +27,13 @@ Engine::Engine(const Particle& particle, const SettleParams& params, const Quat&
 
 // The transition table. Each phase's step reports the event that ends it, if any:
 //   flight  ─ touch ─▶ contact   the paper's touch (§2.1): translation stops, the rotation starts from rest
-//   flight  ─ touch ─▶ impact    rigid impacts (a toss, or E > 0; uses_impacts): resolved at once, then
+//   flight  ─ touch ─▶ impact    rigid impacts (a toss, E > 0 or finite friction): resolved at once, then
 //     impact ─▶ flight            every point on the wall leaves it (a rebound)
-//     impact ─▶ contact           otherwise: the hand-over, with the angular momentum the impacts left
+//     impact ─▶ contact           otherwise, friction infinite: the hand-over, with the angular momentum the
+//                                 impacts left
+//     impact ─▶ frictional contact   otherwise, friction finite: with the whole motion the impacts left
 //   contact ─ rest ─▶ rest       the touching points hold the centre of mass over a stable hull face
+//   frictional contact ─ rest ─▶ rest   nothing moves or accelerates, over a stable hull face
 //   flight, contact ─ limit ─▶ stopped   at the time limit or the step limit, before the next step
 // (Inside the contact phase the support switches, and an edge balance is tipped off, without a transition.)
 bool Engine::step() {
@@ -39,12 +44,14 @@ bool Engine::step() {
     stop(Status::max_steps);
   } else if (auto* flight = std::get_if<Flight>(&phase_)) {
     if (const auto touch = flight->step()) {
-      if (!uses_impacts(run_.params)) {
+      if (!uses_impacts(run_.params) && !frictional()) {
         start_contact(touch->velocity, Vec3::Zero(), false);
       } else {
         const Impact::Outcome out = Impact(run_).resolve({touch->velocity, touch->omega});
         if (out.rebound)
           start_flight(out.motion.velocity, out.motion.omega, 0.0);
+        else if (frictional())
+          start_frictional(out.motion);
         else
           start_contact(out.motion.velocity, out.motion.omega, true);
       }
@@ -52,6 +59,11 @@ bool Engine::step() {
   } else if (auto* contact = std::get_if<Contact>(&phase_)) {
     if (auto rest = contact->step()) {
       const int count = contact->contact_count();
+      phase_.emplace<Rest>(Rest{std::move(*rest), count});
+    }
+  } else if (auto* sliding = std::get_if<FrictionalContact>(&phase_)) {
+    if (auto rest = sliding->step()) {
+      const int count = sliding->contact_count();
       phase_.emplace<Rest>(Rest{std::move(*rest), count});
     }
   }
@@ -70,6 +82,8 @@ void Engine::start_contact(const Vec3& com_velocity, const Vec3& omega, bool car
     phase_.emplace<Rest>(Rest{std::move(*rest), count});
   }
 }
+
+void Engine::start_frictional(const Motion& motion) { phase_.emplace<FrictionalContact>(run_, motion); }
 
 void Engine::stop(Status why) {
   const Sample now = sample();  // the motion it had, as the phase it stops reports it
@@ -91,7 +105,8 @@ Status Engine::status() const {
 double Engine::kinetic_energy() const {
   return std::visit(
       Overloaded{[](const Flight& f) { return f.kinetic_energy(); },
-                 [](const Contact& c) { return c.kinetic_energy(); }, [](const Rest&) { return 0.0; },
+                 [](const Contact& c) { return c.kinetic_energy(); },
+                 [](const FrictionalContact& c) { return c.kinetic_energy(); }, [](const Rest&) { return 0.0; },
                  [](const Stopped& s) { return s.kinetic_energy; }},
       phase_);
 }
@@ -106,6 +121,12 @@ Sample Engine::sample() const {
                         [&](const Contact& c) {
                           s.omega = c.omega();
                           s.contact_count = c.contact_count();
+                        },
+                        [&](const FrictionalContact& c) {
+                          s.omega = c.omega();
+                          s.contact_count = c.contact_count();
+                          s.sticking = c.sticking();
+                          s.sliding = c.sliding();
                         },
                         [&](const Rest& r) { s.contact_count = r.contact_count; },
                         [&](const Stopped& st) {
@@ -142,6 +163,10 @@ SettleResult Engine::result() const {
   r.smooth = run_.smooth;
   r.dt = run_.tol.dt;
   r.unconverged_steps = rec.unconverged;
+  r.friction_work = rec.friction_work;
+  r.damping_work = rec.damping_work;
+  r.sliding_distance = rec.sliding_distance;
+  r.painleve = rec.painleve;
   return r;
 }
 

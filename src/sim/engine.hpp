@@ -1,7 +1,8 @@
 // Internal: the settling engine — a state machine over named phases (docs/method.md, "Phases").
 //
 //   flight ──touch──▶ impact ──rebound──▶ flight
-//      │                 └──hand-over──▶ contact ──rest──▶ rest
+//      │                 ├──hand-over──▶ contact ──rest──▶ rest                (friction infinite: the paper's)
+//      │                 └──hand-over──▶ frictional contact ──rest──▶ rest     (finite friction)
 //      └──touch (the paper's: translation stops)──▶ contact
 //   any phase ──time or step limit──▶ stopped
 //
@@ -13,6 +14,7 @@
 
 #include "phases/contact.hpp"
 #include "phases/flight.hpp"
+#include "phases/frictional_contact.hpp"
 #include "phases/impact.hpp"
 #include "phases/rest.hpp"
 #include "run.hpp"
@@ -38,12 +40,15 @@ class Engine {
 
   const Run& run() const { return run_; }
   /// The current phase (for white-box tests that check a phase's own work as the run goes).
-  using Phase = std::variant<Flight, Contact, Rest, Stopped>;
+  using Phase = std::variant<Flight, Contact, FrictionalContact, Rest, Stopped>;
   Phase& phase() { return phase_; }
 
  private:
   void start_flight(const Vec3& velocity, const Vec3& omega, double height);
   void start_contact(const Vec3& com_velocity, const Vec3& omega, bool carry);
+  /// Finite friction: the contact phase of a free body with Coulomb's law at every point on the wall.
+  void start_frictional(const Motion& motion);
+  bool frictional() const { return std::isfinite(run_.params.friction); }
   void stop(Status why);
   double kinetic_energy() const;
 

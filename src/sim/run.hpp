@@ -23,6 +23,11 @@ struct Recorder {
   double energy_start = 0;
   long unconverged = 0;     ///< paper steps whose pseudo-time iteration hit max_iterations
   double stable_time = -1;  ///< when the paper's stability test first passed
+  // The frictional contact phase's ledger (SettleResult).
+  double friction_work = 0;
+  double damping_work = 0;
+  double sliding_distance = 0;
+  int painleve = 0;
 
   ContactType type() const { return phases.empty() ? ContactType::free_fall : phases.back().contact; }
   /// A new contact type from time t (nothing if it is the current one).

@@ -16,6 +16,11 @@ Tolerances make_tolerances(const Particle& particle, const SettleParams& params)
   t.event = tol::kEvent * length;
   t.rss_threshold = params.line_threshold * length * length;
   t.speed = tol::kSpeed * std::sqrt(g * length);
+  t.frictional_band = tol::kFrictionalBand * length;
+  t.separation_speed = std::sqrt(2 * g * t.frictional_band);
+  t.slip_speed = tol::kSlipSpeed * std::sqrt(g * length);
+  t.rest_energy = mass * g * t.frictional_band;
+  t.still_acceleration = tol::kAccel * g;
   t.still_energy = tol::kStill * mass * g * length;
   t.axis_rate = tol::kAxisRate * std::sqrt(g / length);
   t.balance_offset = tol::kBalanceOffset * length;

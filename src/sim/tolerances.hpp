@@ -14,6 +14,10 @@ namespace repose::sim {
 namespace tol {
 // ---- lengths, × L
 inline constexpr double kTouch = 1e-9;   ///< a vertex this close to the wall is on it (touching set)
+/// The frictional contact phase's points on the wall: within this of it and not leaving. A hundred times the
+/// touching tolerance, so that the integrator's drift (its tolerance, 1e-9 of L per step at most) never
+/// takes a point pressed on the wall out of the set between two steps.
+inline constexpr double kFrictionalBand = 1e-7;
 inline constexpr double kEvent = 1e-12;  ///< a vertex this far below where it started has pierced the wall
 /// Below-the-wall is measured from where a vertex started, down to at most this many event tolerances, so
 /// a vertex that already touches within round-off does not re-trigger at once.
@@ -45,6 +49,12 @@ inline constexpr double kMinOneMinusE = 1e-3;
 
 // ---- speeds, energies, rates
 inline constexpr double kSpeed = 1e-9;  ///< × sqrt(g·L): a contact point slower than this is not moving
+/// × sqrt(g·L): the frictional contact phase takes a point on the wall as sliding along its slip above this
+/// speed, and at rest (sticking, or starting to slide by Coulomb's law at zero slip) below it. Well above
+/// kSpeed, since a sticking point's slip drifts by the integrator's error (its tolerance per step): the
+/// slip of a point that stops sliding is located down to kSpeed, and a drift of a sticking point past this
+/// is a slide that friction stops again at once.
+inline constexpr double kSlipSpeed = 1e-6;
 inline constexpr double kAccel = 1e-9;  ///< × g: a contact point's acceleration below this is none
 inline constexpr double kStill = 1e-9;  ///< × m·g·L: kinetic energy below this is no motion (edge balances)
 inline constexpr double kAxisRate = 1e-12;  ///< × sqrt(g/L): an angular velocity below this has no axis
@@ -90,6 +100,15 @@ struct Tolerances {
   double event = 0;            ///< a vertex this far below its start has pierced the wall, length
   double rss_threshold = 0;    ///< Algorithm 1's line/surface threshold, length²
   double speed = 0;            ///< a contact point slower than this is not moving, length/time
+  double frictional_band = 0;  ///< the frictional contact phase's points on the wall: within this, length
+  double slip_speed = 0;       ///< and sliding above this slip, length/time (kSlipSpeed)
+  /// ... at rest when its kinetic energy is below m·g·band (it cannot lift the body out of the band) and
+  /// nothing accelerates with the velocities at zero.
+  double rest_energy = 0;
+  /// A touch slower than this cannot carry the point out of that band again (sqrt(2·g·band)): plastic, so
+  /// a rocking or hopping body's rebounds do not cascade without end.
+  double separation_speed = 0;
+  double still_acceleration = 0;  ///< an acceleration below this is none (kAccel·g), length/time²
   double still_energy = 0;     ///< kinetic energy below this is no motion, mass·length²/time²
   double axis_rate = 0;        ///< an angular velocity below this has no axis, rad/time
   double balance_offset = 0;   ///< how far beyond an edge balance the centre of mass is put, length

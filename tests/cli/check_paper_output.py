@@ -15,7 +15,7 @@ import numpy as np
 
 CASES = ["ellipsoid-c075", "ellipsoid-c150", "cylinder-1106", "cylinder-1108", "tetrahedron", "irregular"]
 COLUMNS = ("t,qw,qx,qy,qz,omega_x,omega_y,omega_z,com_x,com_y,com_z,contact,contact_count,kinetic_energy,"
-           "potential_energy").split(",")
+           "potential_energy,sticking,sliding").split(",")
 FIGURES = {case: ["pose", "com_height", "omega"] for case in CASES}
 FIGURES["irregular"].append("contacts")
 problems = []

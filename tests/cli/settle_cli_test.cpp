@@ -207,12 +207,12 @@ TEST_F(SettleCli, OutWritesTimeSeriesAndSummary) {
   ASSERT_TRUE(std::getline(csv, line));
   EXPECT_EQ(line,
             "t,qw,qx,qy,qz,omega_x,omega_y,omega_z,com_x,com_y,com_z,contact,contact_count,kinetic_energy,"
-            "potential_energy");
+            "potential_energy,sticking,sliding");
   const std::set<std::string> contact_names = {"free-fall", "point", "line", "surface"};
   std::vector<std::vector<double>> rows;
   while (std::getline(csv, line)) {
     const std::vector<std::string> f = split(line, ',');
-    ASSERT_EQ(f.size(), 15u) << line;
+    ASSERT_EQ(f.size(), 17u) << line;
     std::vector<double> row;
     for (size_t i = 0; i < f.size(); ++i) {
       if (i == 11) {

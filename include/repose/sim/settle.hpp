@@ -46,6 +46,10 @@ struct Sample {
   Vec3 com = Vec3::Zero();    ///< centre of mass, world frame
   ContactType contact = ContactType::free_fall;
   int contact_count = 0;        ///< hull vertices within ε of the wall
+  /// With finite friction after the landing (the frictional contact phase): of the points pressed on the
+  /// wall, how many stick and how many slide (both 0 in flight and in the paper's phase).
+  int sticking = 0;
+  int sliding = 0;
   double kinetic_energy = 0;    ///< translational + rotational
   double potential_energy = 0;  ///< m·g·z_com
 };
@@ -98,6 +102,15 @@ struct SettleResult {
   bool smooth = false;         ///< whether the particle was treated as smooth
   double dt = 0;               ///< the time step used
   long unconverged_steps = 0;  ///< steps whose pseudo-time iteration hit max_iterations
+  /// The frictional contact phase (finite friction, docs/method.md "Friction after the landing"): what its
+  /// friction and the damping moment took from the mechanical energy (both ≥ 0, mass·length²/time²; with the
+  /// impacts' losses they close the energy balance), the path its contact slid (length; each point's slip
+  /// weighted by its share of the normal force), and the Painlevé configurations it met (each resolved by
+  /// an impact without collision).
+  double friction_work = 0;
+  double damping_work = 0;
+  double sliding_distance = 0;
+  int painleve = 0;
 };
 
 /// Whether SmoothMode::automatic treats this particle as smooth: convex everywhere with every dihedral angle

@@ -22,15 +22,21 @@ constexpr std::size_t kMaxImpacts = 10000;
 Impact::Impact(Run& run) : run_(run), law_{run.params.restitution, run.params.friction} {}
 
 Impact::Outcome Impact::resolve(const Motion& motion) {
+  std::vector<Vec3> arms;
+  for (const Vec3& v : run_.particle.hull.vertices) {
+    const Vec3 arm = run_.q * v;
+    if (run_.com.z() + arm.z() <= run_.tol.touch) arms.push_back(arm);
+  }
+  return resolve(motion, arms, law_);
+}
+
+Impact::Outcome Impact::resolve(const Motion& motion, const std::vector<Vec3>& arms, const ImpactLaw& law,
+                                bool every_point) {
   Run& run = run_;
   const Body& body = run.body;
   const Mat3 R = run.q.toRotationMatrix();
   const Mat3 inertia = R * body.inertia * R.transpose();  // about the centre of mass, world frame
-  arms_.clear();
-  for (const Vec3& v : run.particle.hull.vertices) {
-    const Vec3 arm = run.q * v;
-    if (run.com.z() + arm.z() <= run.tol.touch) arms_.push_back(arm);
-  }
+  arms_ = arms;
   const double v_tol = run.tol.speed;
   const double potential = run.potential_energy();
   Motion m = motion;
@@ -45,10 +51,11 @@ Impact::Outcome Impact::resolve(const Motion& motion) {
     record.t = run.t;
     record.points = static_cast<int>(approaching_.size());
     record.energy_before = sim::kinetic_energy(body.mass, inertia, m) + potential;
-    if (approaching_.size() > 1 && std::isfinite(law_.friction)) {
+    const std::size_t points = every_point ? arms_.size() : approaching_.size();
+    if (points > 1 && std::isfinite(law.friction)) {
       // Several points with finite friction: Coulomb at each of them (multi_impact.hpp), over every point on
       // the wall (one not approaching takes an impulse only if the others' push it into the wall).
-      const MultiImpactOutcome out = collide_points(body.mass, inertia, arms_, m, law_);
+      const MultiImpactOutcome out = collide_points(body.mass, inertia, arms_, m, law);
       Vec3 centre = Vec3::Zero();
       double total = 0;
       bool stick = true;
@@ -74,7 +81,7 @@ Impact::Outcome Impact::resolve(const Motion& motion) {
                                              ? std::optional<Vec3>(approaching_[0])
                                              : impulse_centre(body.mass, inertia, approaching_, m);
       if (!centre) break;
-      const ImpactOutcome out = collide(body.mass, inertia, *centre, m, law_);
+      const ImpactOutcome out = collide(body.mass, inertia, *centre, m, law);
       record.point = run.com + *centre;
       record.normal_speed_before = out.speed_before.z();
       record.normal_speed_after = out.speed_after.z();

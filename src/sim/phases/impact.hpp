@@ -21,6 +21,12 @@ class Impact {
   };
   /// Resolves the impacts of the particle at the run's pose arriving with `motion`; each is recorded.
   Outcome resolve(const Motion& motion);
+  /// The same at the given points on the wall (offsets from the centre of mass) with the given law (the
+  /// frictional contact phase: its own contact band, and plastic touches too slow to leave it). With
+  /// `every_point`, one point approaching among several on the wall takes the multi-point law with all of
+  /// them (a point at rest on the wall is pushed into it too), not the one-point law alone.
+  Outcome resolve(const Motion& motion, const std::vector<Vec3>& arms, const ImpactLaw& law,
+                  bool every_point = false);
 
  private:
   Run& run_;

@@ -1,0 +1,355 @@
+// The frictional contact phase (frictional_contact.hpp).
+#include "frictional_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "../events.hpp"
+#include "impact.hpp"
+
+namespace repose::sim {
+
+namespace {
+// Impacts and impacts without collision at one instant: each round leaves no point approaching the wall, so
+// a few suffice; the bound keeps a degenerate set finite.
+constexpr int kSegmentRounds = 8;
+// The event search samples each step at this many instants and bisects the first interval in which an event
+// holds at its end (the motion is smooth in a step: a vertex dipping below the wall and back within an eighth
+// of a step is caught by the next step's projection instead, and counted in the depth).
+constexpr int kEventSamples = 8;
+// Segments shorter than this (× τ) in a row, kStalls of them, are a stall (FrictionalContact::step).
+constexpr double kStallTime = 1e-12;
+constexpr int kStalls = 8;
+
+Motion motion_of(const BodyState& s) { return {s.velocity, s.omega}; }
+}  // namespace
+
+FrictionalContact::FrictionalContact(Run& run, const Motion& motion)
+    : run_(run),
+      integrator_(run.body.mass, run.tol.length, run.params.gravity, run.params.tolerance,
+                  run.tol.flight_max_step),
+      velocity_(motion.velocity),
+      omega_(motion.omega),
+      ledger_{run.record.friction_work, run.record.damping_work, run.record.sliding_distance} {}
+
+double FrictionalContact::kinetic_energy() const {
+  const Mat3 R = run_.q.toRotationMatrix();
+  return sim::kinetic_energy(run_.body.mass, R * run_.body.inertia * R.transpose(), {velocity_, omega_});
+}
+
+int FrictionalContact::sticking() const {
+  return static_cast<int>(std::count(forces_.modes.begin(), forces_.modes.end(), ContactMode::stick));
+}
+int FrictionalContact::sliding() const {
+  return static_cast<int>(std::count(forces_.modes.begin(), forces_.modes.end(), ContactMode::slide));
+}
+
+std::optional<RestPose> FrictionalContact::step() {
+  Run& run = run_;
+  if (run.t >= step_end_) {
+    segment_start_ = run.t;
+    if (auto rest = begin_segment()) return rest;
+    const auto [a, b] = integrator_.step();
+    step_end_ = b;
+    event_ = locate_event(a, b);
+    ++run.steps;
+  }
+  const double end = std::min({event_, step_end_, run.tol.max_time, run.limit});
+  move_to(end);
+  if (end == event_) step_end_ = end;  // a new segment starts at the event
+  // Segments that end at once, one after another (a slip that stops as soon as it is taken as sliding), are
+  // bounded: after kStalls of them the next segment takes every point as at rest on the wall.
+  stalls_ = end - segment_start_ <= kStallTime * run.tol.time_scale ? stalls_ + 1 : 0;
+  hold_ = stalls_ >= kStalls;
+  return std::nullopt;
+}
+
+void FrictionalContact::move_to(double t) {
+  const BodyState s = integrator_.state_at(t);
+  run_.t = t;
+  run_.q = s.q;
+  run_.com = s.com;
+  velocity_ = s.velocity;
+  omega_ = s.omega;
+  ledger_ = integrator_.ledger_at(t);
+  run_.record.friction_work = ledger_.friction_work;
+  run_.record.damping_work = ledger_.damping_work;
+  run_.record.sliding_distance = ledger_.sliding_distance;
+}
+
+// The points on the wall: within the band and not leaving it; each slides along its slip or is at rest.
+void FrictionalContact::classify() {
+  const Run& run = run_;
+  const auto& verts = run.particle.hull.vertices;
+  active_.clear();
+  conditions_.clear();
+  for (std::size_t k = 0; k < verts.size(); ++k) {
+    const Vec3 arm = run.q * verts[k];
+    if (run.com.z() + arm.z() > run.tol.frictional_band) continue;
+    const Vec3 u = velocity_ + omega_.cross(arm);
+    if (u.z() > run.tol.speed) continue;  // leaving
+    active_.push_back(static_cast<int>(k));
+    PointCondition c;
+    const Vec2 slip = u.head<2>();
+    if (slip.norm() > run.tol.slip_speed && !hold_) {
+      c.rule = PointRule::sliding;
+      c.direction = slip.normalized();
+    }
+    conditions_.push_back(c);
+  }
+}
+
+// Points approaching the wall strike it (Stronge's E and Coulomb's μ; several at once by the multi-point law
+// with every point on the wall); a touch too slow to leave the band again is plastic. True if any did.
+bool FrictionalContact::resolve_impacts() {
+  Run& run = run_;
+  std::vector<Vec3> arms;
+  double fastest = 0;
+  for (int k : active_) {
+    const Vec3 arm = run.q * run.particle.hull.vertices[static_cast<std::size_t>(k)];
+    arms.push_back(arm);
+    fastest = std::max(fastest, -(velocity_ + omega_.cross(arm)).z());
+  }
+  if (fastest <= run.tol.speed) return false;
+  const ImpactLaw law{fastest > run.tol.separation_speed ? run.params.restitution : 0.0, run.params.friction};
+  const Impact::Outcome out = Impact(run).resolve({velocity_, omega_}, arms, law, true);
+  velocity_ = out.motion.velocity;
+  omega_ = out.motion.omega;
+  return true;
+}
+
+// Painlevé's inconsistent case at sliding points (no normal force holds them on the wall): an impact without
+// collision (Génot & Brogliato 1999), the dynamic jam ending in sticking — the impulses at those points, all
+// at once, that stop them (the least-norm ones: an edge's two corners leave the rotation about it free),
+// each kept in its friction cone (a negative normal impulse dropped, a tangential one beyond the cone
+// projected onto it). Counted, and recorded as an impact. True if any point met it.
+bool FrictionalContact::resolve_painleve() {
+  Run& run = run_;
+  std::vector<Vec3> arms;
+  for (std::size_t i = 0; i < active_.size(); ++i)
+    if (i < forces_.inconsistent.size() && forces_.inconsistent[i])
+      arms.push_back(run.q * run.particle.hull.vertices[static_cast<std::size_t>(active_[i])]);
+  if (arms.empty()) return false;
+  run.record.painleve += static_cast<int>(arms.size());
+  const Mat3 R = run.q.toRotationMatrix();
+  const Mat3 inertia = R * run.body.inertia * R.transpose();
+  const Mat3 inverse_inertia = inertia.inverse();
+  const double m = run.body.mass;
+  const std::size_t n = arms.size();
+  // The points' velocities are u = u0 + W·P with W the stacked Delassus matrix (blocks K_ij).
+  Eigen::MatrixXd W(3 * n, 3 * n);
+  Eigen::VectorXd u0(3 * n);
+  const auto cross = [](const Vec3& r) {
+    Mat3 x;
+    x << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
+    return x;
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    u0.segment<3>(3 * i) = velocity_ + omega_.cross(arms[i]);
+    for (std::size_t j = 0; j < n; ++j)
+      W.block<3, 3>(3 * i, 3 * j) = Mat3::Identity() / m - cross(arms[i]) * inverse_inertia * cross(arms[j]);
+  }
+  const Eigen::VectorXd P = W.completeOrthogonalDecomposition().solve(-u0);
+  ImpactRecord record;
+  record.t = run.t;
+  record.points = static_cast<int>(n);
+  record.stick = true;
+  record.energy_before = sim::kinetic_energy(m, inertia, {velocity_, omega_}) + run.potential_energy();
+  Vec3 centre = Vec3::Zero();
+  double total = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec3 p = P.segment<3>(3 * i);
+    if (!(p.z() > 0)) continue;
+    const double cone = run.params.friction * p.z(), t = p.head<2>().norm();
+    if (t > cone) p.head<2>() *= cone / t;
+    velocity_ += p / m;
+    omega_ += inverse_inertia * arms[i].cross(p);
+    centre += p.z() * arms[i];
+    total += p.z();
+  }
+  const Vec3 at = total > 0 ? Vec3(centre / total) : arms[0];
+  const Vec3 before = Vec3(u0.segment<3>(0)), after = velocity_ + omega_.cross(at);
+  record.point = run.com + at;
+  record.normal_speed_before = before.z();
+  record.tangential_speed_before = before.head<2>().norm();
+  record.normal_speed_after = after.z();
+  record.tangential_speed_after = after.head<2>().norm();
+  record.energy_after = sim::kinetic_energy(m, inertia, {velocity_, omega_}) + run.potential_energy();
+  run.record.impacts.push_back(record);
+  return true;
+}
+
+std::optional<RestPose> FrictionalContact::begin_segment() {
+  Run& run = run_;
+  const auto& verts = run.particle.hull.vertices;
+  // Nothing below the wall: the integrator's drift is undone by lifting the body (its depth is recorded);
+  // a lowest point that drifted up within the band while not leaving is set back on the wall.
+  double lowest = INFINITY;
+  Vec3 lowest_arm = Vec3::Zero();
+  for (const Vec3& v : verts) {
+    const Vec3 arm = run.q * v;
+    if (run.com.z() + arm.z() < lowest) {
+      lowest = run.com.z() + arm.z();
+      lowest_arm = arm;
+    }
+  }
+  if (lowest < 0) {
+    run.record.note_depth(-lowest);
+    run.com.z() -= lowest;
+  } else if (lowest <= run.tol.frictional_band &&
+             std::abs((velocity_ + omega_.cross(lowest_arm)).z()) <= run.tol.speed) {
+    run.com.z() -= lowest;
+  }
+  bool settled = false;
+  for (int round = 0; round < kSegmentRounds && !settled; ++round) {
+    classify();
+    if (resolve_impacts()) continue;
+    forces_ = forces_at({run.com, velocity_, run.q, omega_});
+    settled = !resolve_painleve();
+  }
+  if (!settled) {  // the rounds' bound: the points as they are now
+    classify();
+    forces_ = forces_at({run.com, velocity_, run.q, omega_});
+  }
+  // The contact type by the points on the wall (flight when none).
+  const std::size_t n = active_.size();
+  if (run.trace)
+    std::fprintf(stderr, "t=%.12g frictional points=%zu stick=%d slide=%d painleve=%d v=%g,%g,%g omega=%g,%g,%g\n",
+                 run.t, n, sticking(), sliding(), run.record.painleve, velocity_.x(), velocity_.y(),
+                 velocity_.z(), omega_.x(), omega_.y(), omega_.z());
+  run.record.set_type(n == 0   ? ContactType::flight
+                      : n == 1 ? ContactType::point
+                      : n == 2 ? ContactType::line
+                               : ContactType::surface,
+                      run.t);
+  // Rest: on the wall with too little energy to lift it out of the band (a rocking block's impacts would
+  // otherwise accumulate without end, as Housner's do), nothing accelerating with the velocities at zero,
+  // over a stable face. The energy dropped is at most m·g·band.
+  const bool slides = std::any_of(conditions_.begin(), conditions_.end(),
+                                  [](const PointCondition& c) { return c.rule == PointRule::sliding; });
+  if (n > 0 && !slides && kinetic_energy() <= run.tol.rest_energy) {
+    std::vector<int> band;  // every point within the band, leaving or not: the body cannot leave it
+    for (std::size_t k = 0; k < verts.size(); ++k)
+      if (run.com.z() + (run.q * verts[k]).z() <= run.tol.frictional_band) band.push_back(static_cast<int>(k));
+    const ContactForces still = forces_at({run.com, Vec3::Zero(), run.q, Vec3::Zero()}, band,
+                                          std::vector<PointCondition>(band.size()));
+    if (still.acceleration.norm() <= run.tol.still_acceleration &&
+        still.angular_acceleration.norm() * run.tol.length <= run.tol.still_acceleration) {
+      const Vec3 body_point = verts[static_cast<std::size_t>(active_[0])];
+      const Support support{run.com + run.q * body_point, body_point, false, Vec3::UnitX()};
+      if (auto rest = flush_rest(run, support)) {
+        velocity_ = omega_ = Vec3::Zero();
+        return rest;
+      }
+    }
+  }
+  const double first = started_ ? integrator_.proposed_step() : run.tol.first_step;
+  started_ = true;
+  integrator_.start({run.com, velocity_, run.q, omega_}, ledger_, run.t, first,
+                    [this](const BodyState& s) { return rates(s); });
+  return std::nullopt;
+}
+
+ContactForces FrictionalContact::forces_at(const BodyState& s) const {
+  return forces_at(s, active_, conditions_);
+}
+
+ContactForces FrictionalContact::forces_at(const BodyState& s, const std::vector<int>& points,
+                                           std::vector<PointCondition> conditions) const {
+  const Run& run = run_;
+  const Mat3 R = s.q.toRotationMatrix();
+  const ContactBody body{run.body.mass, R * run.body.inertia * R.transpose(), run.params.gravity,
+                         run.params.damping};
+  std::vector<Vec3> arms(points.size());
+  const std::vector<PointCondition> start = conditions;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    arms[i] = s.q * run.particle.hull.vertices[static_cast<std::size_t>(points[i])];
+    // A sliding point slides along its slip as it turns; past the instant its slip stops or turns against
+    // its direction at the segment's start (an event: the segment ends there) the motion goes on with that
+    // direction, so that the dense output stays smooth up to the event and locates it exactly.
+    const Vec2 slip = (s.velocity + s.omega.cross(arms[i])).head<2>();
+    if (conditions[i].rule == PointRule::sliding && slip.dot(start[i].direction) > 0)
+      conditions[i].direction = slip.normalized();
+  }
+  return contact_forces(body, motion_of(s), arms, run.params.friction, conditions);
+}
+
+BodyRates FrictionalContact::rates(const BodyState& s) const {
+  BodyRates r;
+  if (active_.empty()) {
+    r.acceleration = Vec3(0, 0, -run_.params.gravity);
+    const Mat3 R = s.q.toRotationMatrix();
+    const Mat3 inertia = R * run_.body.inertia * R.transpose();
+    r.angular_acceleration = inertia.inverse() * (-run_.params.damping * s.omega - s.omega.cross(inertia * s.omega));
+  } else {
+    const ContactForces f = forces_at(s);
+    r.acceleration = f.acceleration;
+    r.angular_acceleration = f.angular_acceleration;
+    double normal = 0, weighted_slip = 0;
+    for (std::size_t i = 0; i < active_.size(); ++i) {
+      const Vec3 arm = s.q * run_.particle.hull.vertices[static_cast<std::size_t>(active_[i])];
+      const Vec3 u = s.velocity + s.omega.cross(arm);
+      r.friction_power += f.forces[i].head<2>().dot(u.head<2>());
+      // A sliding point's slip along the direction it slides in: past its stop (an event) the motion's
+      // extension slides on backwards, and the slip rate stays smooth there (negative) for the dense output.
+      const Vec2 ut = u.head<2>();
+      const Vec2& s0 = conditions_[i].direction;
+      const bool along = conditions_[i].rule == PointRule::sliding && ut.dot(s0) <= 0;
+      normal += f.forces[i].z();
+      weighted_slip += f.forces[i].z() * (along ? ut.dot(s0) : ut.norm());
+    }
+    if (normal > 0) r.slip_rate = weighted_slip / normal;
+  }
+  r.damping_power = -run_.params.damping * s.omega.squaredNorm();
+  return r;
+}
+
+double FrictionalContact::locate_event(double a, double b) {
+  const Run& run = run_;
+  const auto& verts = run.particle.hull.vertices;
+  // A vertex off the set reaching the wall.
+  std::vector<char> on(verts.size(), 0);
+  for (int k : active_) on[static_cast<std::size_t>(k)] = 1;
+  const auto touches = [&](double t) {
+    const BodyState s = integrator_.state_at(t);
+    for (std::size_t k = 0; k < verts.size(); ++k)
+      if (!on[k] && s.com.z() + (s.q * verts[k]).z() < 0) return true;
+    return false;
+  };
+  // A sliding point's slip stopping, or turning against its direction at the segment's start.
+  const auto slip_stops = [&](double t) {
+    const BodyState s = integrator_.state_at(t);
+    for (std::size_t i = 0; i < active_.size(); ++i) {
+      if (conditions_[i].rule != PointRule::sliding) continue;
+      const Vec2 slip =
+          (s.velocity + s.omega.cross(s.q * verts[static_cast<std::size_t>(active_[i])])).head<2>();
+      if (slip.norm() <= run.tol.speed || slip.dot(conditions_[i].direction) <= 0) return true;
+    }
+    return false;
+  };
+  EventSearch search;
+  search.resolution = (b - a) * kEventResolution;
+  double prev = a;
+  for (int j = 1; j <= kEventSamples; ++j) {
+    const double t = j == kEventSamples ? b : a + (b - a) * j / kEventSamples;
+    const bool touch = touches(t), stop = slip_stops(t);
+    if (touch || stop) {
+      double when = INFINITY;
+      // A touch at the bracket's lower end (nothing below the wall yet), a stop at its upper end (stopped).
+      if (touch) {
+        const Located l = locate(prev, t, search, touches, monotone);
+        if (l.found()) when = l.lo;
+      }
+      if (stop) {
+        const Located l = locate(prev, t, search, slip_stops, monotone);
+        if (l.found()) when = std::min(when, l.hi);
+      }
+      if (std::isfinite(when)) return std::max(when, std::nextafter(a, INFINITY));
+    }
+    prev = t;
+  }
+  return INFINITY;
+}
+
+}  // namespace repose::sim

@@ -1,0 +1,71 @@
+// Internal: the contact phase with finite friction (issue 34; docs/method.md, "Friction after the landing").
+//
+// The body is free (six degrees of freedom) with unilateral contacts at its hull vertices on the wall: each
+// pressed point sticks or slides by Coulomb's law (contact_forces.hpp); a point whose normal force would turn
+// negative opens and lifts; a body whose points all leave flies (a hop) within this phase. Between events the
+// rule of each point is fixed — sliding along its slip, or at rest on the wall (stick, or start to slide on
+// the cone) — and the motion is integrated with dense output (body_integrator.hpp). Events, located on the
+// dense output: a vertex reaching the wall (an impact by the impact laws, plastic when too slow to leave
+// the band again) and a sliding point's slip stopping or reversing (its rule is chosen again). Painlevé's
+// inconsistent case is an impact without collision at the point. The phase ends in the flush rest of a stable
+// face, reached when nothing moves and nothing accelerates.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "../body_integrator.hpp"
+#include "../contact_forces.hpp"
+#include "../run.hpp"
+#include "rest.hpp"
+
+namespace repose::sim {
+
+class FrictionalContact {
+ public:
+  /// Starts at run.t from the run's pose with the centre of mass's `motion` (world frame).
+  FrictionalContact(Run& run, const Motion& motion);
+  FrictionalContact(const FrictionalContact&) = delete;  // the integrator's callback points at this
+  FrictionalContact& operator=(const FrictionalContact&) = delete;
+
+  /// Advances one step (shorter at an event, the time limit or advance_to's); the rest, once reached.
+  std::optional<RestPose> step();
+
+  const Vec3& velocity() const { return velocity_; }
+  const Vec3& omega() const { return omega_; }
+  double kinetic_energy() const;
+  int contact_count() const { return static_cast<int>(active_.size()); }
+  int sticking() const;
+  int sliding() const;
+
+ private:
+  // The start of a segment at run.t: the pose projected onto the wall, the points on it classified, impacts
+  // and Painlevé's case resolved, the rest test, and the integrator started.
+  std::optional<RestPose> begin_segment();
+  void classify();
+  bool resolve_impacts();
+  bool resolve_painleve();
+  BodyRates rates(const BodyState& s) const;
+  ContactForces forces_at(const BodyState& s) const;  // at the segment's points, by their rules
+  ContactForces forces_at(const BodyState& s, const std::vector<int>& points,
+                          std::vector<PointCondition> conditions) const;
+  // The first event in (a, b], or +∞.
+  double locate_event(double a, double b);
+  void move_to(double t);
+
+  Run& run_;
+  BodyIntegrator integrator_;
+  Vec3 velocity_, omega_;
+  BodyLedger ledger_;
+  std::vector<int> active_;                 // hull vertices on the wall and not leaving it
+  std::vector<PointCondition> conditions_;  // their rules for this segment
+  ContactForces forces_;                    // at the segment's start
+  double step_end_ = -INFINITY;
+  double event_ = INFINITY;
+  bool started_ = false;
+  double segment_start_ = 0;
+  int stalls_ = 0;     // segments in a row that ended at once
+  bool hold_ = false;  // after a stall: every point taken as at rest for one segment
+};
+
+}  // namespace repose::sim
