@@ -11,6 +11,7 @@
 // face, reached when nothing moves and nothing accelerates.
 #pragma once
 
+#include <Eigen/Dense>
 #include <optional>
 #include <vector>
 
@@ -45,6 +46,8 @@ class FrictionalContact {
   void classify();
   bool resolve_impacts();
   bool resolve_painleve();
+  void hold_sticking_points();
+  Eigen::VectorXd stopping_impulses(const std::vector<Vec3>& arms) const;
   BodyRates rates(const BodyState& s) const;
   ContactForces forces_at(const BodyState& s) const;  // at the segment's points, by their rules
   ContactForces forces_at(const BodyState& s, const std::vector<int>& points,
