@@ -34,6 +34,7 @@ Engine::Engine(const Particle& particle, const SettleParams& params, const Quat&
 //     impact ─▶ frictional contact   otherwise, friction finite: with the whole motion the impacts left
 //   contact ─ rest ─▶ rest       the touching points hold the centre of mass over a stable hull face
 //   frictional contact ─ rest ─▶ rest   nothing moves or accelerates, over a stable hull face
+//   frictional contact ─▶ contact       still moving after kFrictionalTime·τ: the paper's phase ends it
 //   flight, contact ─ limit ─▶ stopped   at the time limit or the step limit, before the next step
 // (Inside the contact phase the support switches, and an edge balance is tipped off, without a transition.)
 bool Engine::step() {
@@ -62,7 +63,10 @@ bool Engine::step() {
       phase_.emplace<Rest>(Rest{std::move(*rest), count});
     }
   } else if (auto* sliding = std::get_if<FrictionalContact>(&phase_)) {
-    if (auto rest = sliding->step()) {
+    if (run_.t - sliding->start_time() >= run_.tol.frictional_time) {
+      const Vec3 velocity = sliding->velocity(), omega = sliding->omega();
+      start_contact(velocity, omega, true);
+    } else if (auto rest = sliding->step()) {
       const int count = sliding->contact_count();
       phase_.emplace<Rest>(Rest{std::move(*rest), count});
     }

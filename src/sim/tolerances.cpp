@@ -29,6 +29,7 @@ Tolerances make_tolerances(const Particle& particle, const SettleParams& params)
   t.dt = params.dt > 0 ? params.dt : (adaptive ? tol::kAdaptiveMaxStep : tol::kPaperStep) * t.time_scale;
   t.first_step = tol::kFirstStep * t.time_scale;
   t.flight_max_step = tol::kAdaptiveMaxStep * t.time_scale;
+  t.frictional_time = tol::kFrictionalTime * t.time_scale;
   t.rebound_window = adaptive ? tol::kReboundWindow * t.time_scale : t.dt;
   double fall_time = (std::sqrt(params.drop_speed * params.drop_speed + 2 * g * params.drop_height)) / g;
   if (uses_impacts(params) || params.velocity != Vec3::Zero()) {

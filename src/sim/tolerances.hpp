@@ -40,6 +40,10 @@ inline constexpr double kFirstStep = 0.05;       ///< the adaptive integrator's 
 /// the adaptive integrator's steps have no fixed length, so it uses this fixed time scale instead.
 inline constexpr double kReboundWindow = 0.05;
 inline constexpr double kSampleInterval = 1e-3;  ///< a time series' spacing unless set (adaptive runs)
+/// × τ: a frictional contact phase still moving after this long (a polygon rolling on over its edges, a
+/// slow creep) hands over to the paper's phase, which ends it in a rest: the run's time limit is ten times
+/// as long, and every convex shape of the test suite's sweeps rests well within it.
+inline constexpr double kFrictionalTime = 200;
 inline constexpr double kMaxTime =
     2000;  ///< the automatic time limit, beyond the fall or the tosses' flights
 /// A toss's bounces take at most (1 + E)/(1 − E) times its first fall (a ball's series); the factor is
@@ -119,6 +123,7 @@ struct Tolerances {
   double flight_max_step = 0;  ///< a spinning flight's longest step (time)
   double rebound_window = 0;   ///< the impact rule's step (impact_support.hpp): dt, or 0.05·τ (adaptive)
   double max_time = 0;         ///< the run's time limit (time)
+  double frictional_time = 0;  ///< the frictional contact phase's longest (time), kFrictionalTime
 };
 
 /// The tolerances of a run of `particle` (mass m) with `params` (validated).

@@ -158,7 +158,7 @@ TEST_F(SettleOptionsCli, DropSpeedGivesTheBallisticTouchdownAndInitialEnergy) {
   // The time series starts with the same split: kinetic ½mv², potential m·g·z_com (12 significant digits).
   const auto rows = csv_rows(read_file(out / "timeseries.csv"));
   ASSERT_FALSE(rows.empty());
-  ASSERT_EQ(rows[0].size(), 15u);
+  ASSERT_EQ(rows[0].size(), 17u);
   EXPECT_EQ(std::stod(rows[0][0]), 0.0);
   EXPECT_NEAR(std::stod(rows[0][13]), 0.5 * m * v * v, 1e-10);
   EXPECT_NEAR(std::stod(rows[0][14]), m * g * (h + 0.5), 1e-9);

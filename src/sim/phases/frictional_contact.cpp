@@ -31,7 +31,8 @@ FrictionalContact::FrictionalContact(Run& run, const Motion& motion)
                   run.tol.flight_max_step),
       velocity_(motion.velocity),
       omega_(motion.omega),
-      ledger_{run.record.friction_work, run.record.damping_work, run.record.sliding_distance} {}
+      ledger_{run.record.friction_work, run.record.damping_work, run.record.sliding_distance},
+      start_time_(run.t) {}
 
 double FrictionalContact::kinetic_energy() const {
   const Mat3 R = run_.q.toRotationMatrix();

@@ -33,6 +33,7 @@ class FrictionalContact {
   std::optional<RestPose> step();
 
   const Vec3& velocity() const { return velocity_; }
+  double start_time() const { return start_time_; }
   const Vec3& omega() const { return omega_; }
   double kinetic_energy() const;
   int contact_count() const { return static_cast<int>(active_.size()); }
@@ -66,6 +67,7 @@ class FrictionalContact {
   double step_end_ = -INFINITY;
   double event_ = INFINITY;
   bool started_ = false;
+  double start_time_ = 0;
   double segment_start_ = 0;
   int stalls_ = 0;     // segments in a row that ended at once
   bool hold_ = false;  // after a stall: every point taken as at rest for one segment
