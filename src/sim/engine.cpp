@@ -19,7 +19,8 @@ Engine::Engine(const Particle& particle, const SettleParams& params, const Quat&
   const Vec3 velocity = p.velocity - Vec3(0, 0, p.drop_speed);
   if (frictional() && p.drop_height == 0)
     start_frictional({velocity, p.spin});  // on the wall, with whatever motion it was given
-  else if (p.drop_height > 0 || p.velocity != Vec3::Zero() || p.spin != Vec3::Zero())
+  else if (p.drop_height > 0 || p.velocity != Vec3::Zero() || p.spin != Vec3::Zero() ||
+           (p.drop_speed > 0 && uses_impacts(p)))  // thrown down from the wall: the impact law, at once
     start_flight(velocity, p.spin, p.drop_height);
   else
     start_contact(Vec3(0, 0, -p.drop_speed), Vec3::Zero(), false);

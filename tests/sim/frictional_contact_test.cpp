@@ -247,3 +247,53 @@ TEST(FrictionalContact, LargeFrictionRestsOnThePapersFace) {
 
 }  // namespace
 }  // namespace repose
+
+namespace repose {
+namespace {
+
+// Issue 34's defects of the hand-over and the start, each failing on main 1005e77:
+// - a rod at 45° (m 1, I 1/12 about its middle) landing on its end with v (2, 0, −1), μ = 0, E = 0: the old
+//   hand-over turned the momentum about the foot into rotation about it, a pulling impulse with unlimited
+//   friction; frictionless, no horizontal force acts at any time, so the centre of mass's horizontal
+//   velocity stays 2 (its x grows by 2·t to round-off) until the rod lands flat;
+// - a cube face down on the wall at 1 m/s used to end at rest at t = 0 where it started (covered by
+//   BoxSlidingFlatStopsAtTheClosedForm);
+// - thrown down from height 0 with E > 0 the old start bypassed the impact law: it must match a start from
+//   1e-12 above the wall (the same impact, 1e-9 relative in the first impact's speeds).
+TEST(FrictionalContact, FrictionlessLandingKeepsTheHorizontalVelocity) {
+  const Particle rod = load_particle("box:x=0.05,y=0.05,z=1", 1000.0);
+  SettleParams p;
+  p.drop_height = 1e-3;
+  p.velocity = Vec3(2, 0, -1);
+  p.friction = 0;
+  Settler settler(rod, p, Quat(Eigen::AngleAxisd(kPi / 4, Vec3::UnitY())));
+  const Vec3 c0 = settler.sample().com;
+  for (double t = 1e-3; t < 0.3 && settler.status() == Status::running; t += 1e-3) {
+    settler.advance_to(t);
+    const Sample s = settler.sample();
+    if (s.contact_count > 2) break;  // landed flat
+    EXPECT_NEAR(s.com.x(), c0.x() + 2 * s.t, 1e-9) << "t " << s.t;
+  }
+}
+
+TEST(FrictionalContact, ThrownDownFromTheWallStrikesByTheImpactLaw) {
+  const Particle cube = load_particle("box:x=1,y=1,z=1", 1000.0);
+  for (const double mu : {0.5, static_cast<double>(INFINITY)}) {
+    SettleParams a;
+    a.drop_speed = 2;
+    a.restitution = 0.5;
+    a.friction = mu;
+    SettleParams b = a;
+    b.drop_height = 1e-12;
+    const Quat q(Eigen::AngleAxisd(0.3, Vec3(1, 2, 0).normalized()));
+    const SettleResult ra = settle(cube, a, q), rb = settle(cube, b, q);
+    ASSERT_FALSE(ra.impacts.empty()) << "mu " << mu;
+    ASSERT_FALSE(rb.impacts.empty());
+    EXPECT_NEAR(ra.impacts[0].normal_speed_before, rb.impacts[0].normal_speed_before, 1e-9 * 2);
+    EXPECT_NEAR(ra.impacts[0].normal_speed_after, rb.impacts[0].normal_speed_after, 1e-9 * 2);
+    EXPECT_GT(ra.impacts[0].normal_speed_after, 0) << "it rebounds";
+  }
+}
+
+}  // namespace
+}  // namespace repose

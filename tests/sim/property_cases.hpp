@@ -92,6 +92,11 @@ struct Case {
   double drop_height = -1;      ///< if ≥ 0, the drop height itself (overrides drop_fraction)
   Integrator integrator = Integrator::paper;
   double tolerance = SettleParams{}.tolerance;  ///< the adaptive integrator's
+  // A toss (make_case's `tossed`): E, μ (finite: the frictional contact phase), and the centre of mass's
+  // velocity and the angular velocity in units of sqrt(g·L) and sqrt(g/L).
+  bool tossed = false;
+  double restitution = 0, friction = INFINITY;
+  Vec3 velocity_fraction = Vec3::Zero(), spin_fraction = Vec3::Zero();
 };
 
 /// Step budget of a possibly-smooth ellipsoid in the budgeted sweep (~6 s of CPU at its worst).
@@ -126,7 +131,8 @@ inline std::uint64_t case_seed(std::uint64_t master, int index) {
 /// particle need not rest; one that hits the budget is counted in the summary); `full` is for the big local
 /// sweep, with the default limits. `coarse` (the sanitizer build's sweep, where every step costs ~100×) keeps
 /// the same draws but the cheapest meshes: irregular grains of frequency 3, cylinders of 6 or 16 sides.
-inline Case make_case(std::uint64_t master, int index, bool full = false, bool coarse = false) {
+inline Case make_case(std::uint64_t master, int index, bool full = false, bool coarse = false,
+                      bool tossed = false) {
   Rng rng(case_seed(master, index));
   Case c;
   c.index = index;
@@ -182,6 +188,19 @@ inline Case make_case(std::uint64_t master, int index, bool full = false, bool c
     c.damping_fraction = rng.log_uniform(1e-2, 1.0);
   if (!full && c.shape == ShapeClass::ellipsoid && c.smooth != SmoothMode::off)
     c.max_steps = kSmoothStepBudget;
+  if (tossed) {
+    // Tossed with finite friction (issue 34): E uniform in [0, 0.9], μ 0 for 5 %, else log-uniform in
+    // [0.05, 3]; up to sqrt(g·L) of velocity and 5·sqrt(g/L) of spin in random directions.
+    c.tossed = true;
+    c.restitution = 0.9 * rng.uniform();
+    c.friction = rng.uniform() < 0.05 ? 0.0 : rng.log_uniform(0.05, 3.0);
+    const auto direction = [&] {
+      const Vec3 v(2 * rng.uniform() - 1, 2 * rng.uniform() - 1, 2 * rng.uniform() - 1);
+      return Vec3(v / std::max(v.norm(), 1e-12));
+    };
+    c.velocity_fraction = rng.uniform() * direction();
+    c.spin_fraction = 5 * rng.uniform() * direction();
+  }
   return c;
 }
 
@@ -196,6 +215,12 @@ inline SettleParams params_for(const Case& c, const Particle& p) {
                     ? c.damping
                     : c.damping_fraction * p.mass.mass * p.length * p.length * std::sqrt(kG / p.length);
   if (c.max_steps > 0) prm.max_steps = c.max_steps;
+  if (c.tossed) {
+    prm.restitution = c.restitution;
+    prm.friction = c.friction;
+    prm.velocity = c.velocity_fraction * std::sqrt(kG * p.length);
+    prm.spin = c.spin_fraction * std::sqrt(kG / p.length);
+  }
   return prm;
 }
 
@@ -210,6 +235,11 @@ inline std::string repro(const Case& c, const Particle& p) {
   if (c.max_steps > 0) s += " --max-steps " + std::to_string(c.max_steps);
   if (c.integrator == Integrator::adaptive) s += " --integrator adaptive";
   if (c.tolerance != SettleParams{}.tolerance) s += " --tolerance " + num17(c.tolerance);
+  if (c.tossed) {
+    const auto vec = [](const Vec3& v) { return num17(v.x()) + "," + num17(v.y()) + "," + num17(v.z()); };
+    s += " --restitution " + num17(prm.restitution) + " --friction " + num17(prm.friction) + " --velocity " +
+         vec(prm.velocity) + " --spin " + vec(prm.spin);
+  }
   return s + "   # case " + std::to_string(c.index);
 }
 
@@ -369,7 +399,7 @@ inline Outcome run_case(const Case& c, const Particle& p) {
   if (o.max_energy_rise > energy_rise_allowance(prm))
     fail("energy rose by " + num17(o.max_energy_rise) + " m·g·L between consecutive samples");
 
-  if (prm.drop_height > 0) {
+  if (prm.drop_height > 0 && !c.tossed) {
     const double touch = std::sqrt(2 * prm.drop_height / kG);
     if (r.phases.empty() || r.phases.front().contact != ContactType::free_fall ||
         std::abs(r.phases.front().t1 - touch) > 1e-9 * touch)

@@ -229,7 +229,9 @@ TEST(Rebound, RandomTossesNeverCreateEnergyNorSinkBelowTheWall) {
         last = imp.energy_after;
       }
       EXPECT_LE(r.energy_end, r.energy_start + 1e-12 * scale) << what;
-      if (std::isfinite(p.friction)) {
+      // (A run still moving after 200·sqrt(L/g) of frictional contact is handed to the paper's phase, whose
+      // support switches are out of the ledger.)
+      if (std::isfinite(p.friction) && r.time < 200 * std::sqrt(particle.length / kG)) {
         EXPECT_NEAR(r.energy_start - r.energy_end, losses + r.friction_work + r.damping_work, 1e-6 * scale)
             << what;
       }

@@ -341,13 +341,15 @@ BodyRates FrictionalContact::rates(const BodyState& s) const {
 double FrictionalContact::locate_event(double a, double b) {
   const Run& run = run_;
   const auto& verts = run.particle.hull.vertices;
-  // A vertex off the set reaching the wall.
+  // A vertex off the set reaching the wall, or one in the set sinking below it by more than the drift
+  // allows (a configuration turned inconsistent within the step: Painlevé's, resolved at the event).
   std::vector<char> on(verts.size(), 0);
   for (int k : active_) on[static_cast<std::size_t>(k)] = 1;
+  const double sinking = -tol::kPierceFloor * run.tol.event;
   const auto touches = [&](double t) {
     const BodyState s = integrator_.state_at(t);
     for (std::size_t k = 0; k < verts.size(); ++k)
-      if (!on[k] && s.com.z() + (s.q * verts[k]).z() < 0) return true;
+      if (s.com.z() + (s.q * verts[k]).z() < (on[k] ? sinking : 0.0)) return true;
     return false;
   };
   // A sliding point's slip stopping, or turning against its direction at the segment's start.
