@@ -35,7 +35,8 @@ Engine::Engine(const Particle& particle, const SettleParams& params, const Quat&
 //     impact ─▶ frictional contact   otherwise, friction finite: with the whole motion the impacts left
 //   contact ─ rest ─▶ rest       the touching points hold the centre of mass over a stable hull face
 //   frictional contact ─ rest ─▶ rest   nothing moves or accelerates, over a stable hull face
-//   frictional contact ─▶ contact       still moving after kFrictionalTime·τ: the paper's phase ends it
+//   frictional contact ─▶ contact       still moving after kFrictionalTime·τ, or stalled (events found again
+//                                       at once, FrictionalContact::stalled): the paper's phase ends it
 //   flight, contact ─ limit ─▶ stopped   at the time limit or the step limit, before the next step
 // (Inside the contact phase the support switches, and an edge balance is tipped off, without a transition.)
 bool Engine::step() {
@@ -64,7 +65,7 @@ bool Engine::step() {
       phase_.emplace<Rest>(Rest{std::move(*rest), count});
     }
   } else if (auto* sliding = std::get_if<FrictionalContact>(&phase_)) {
-    if (run_.t - sliding->start_time() >= run_.tol.frictional_time) {
+    if (run_.t - sliding->start_time() >= run_.tol.frictional_time || sliding->stalled()) {
       const Vec3 velocity = sliding->velocity(), omega = sliding->omega();
       start_contact(velocity, omega, true);
     } else if (auto rest = sliding->step()) {

@@ -235,10 +235,11 @@ TEST(Property, RandomDropsKeepEveryInvariantWithTheAdaptiveIntegrator) {
 }
 // Issue 34: the same invariants (no overlap, energy never rising, every rest a static equilibrium) for
 // tosses with random E, finite μ (the frictional contact phase), velocities and spins.
-// Tosses cost ~20× a drop from rest (rebounds, then the six-degree-of-freedom phase): 300 here (40 under the
-// sanitizers); the 10,000-toss sweep is run with REPOSE_PROPERTY_DROPS=10000.
+// Tosses cost far more than a drop from rest (rebounds, then the six-degree-of-freedom phase; a 64-gon
+// cylinder rolling on its rim up to 40 s): 40 here (6 under the sanitizers). The 10,000-toss sweep of the
+// issue is not run yet (REPOSE_PROPERTY_DROPS=10000).
 TEST(Property, RandomTossesWithFrictionKeepEveryInvariant) {
-  sweep_and_check(kDefaultDrops >= 10000 ? 300 : 40, false, Integrator::adaptive, true);
+  sweep_and_check(kDefaultDrops >= 10000 ? 40 : 6, false, Integrator::adaptive, true);
 }
 
 // The big local sweep: REPOSE_PROPERTY_DROPS=20000 REPOSE_PROPERTY_THREADS=2 repose_tests

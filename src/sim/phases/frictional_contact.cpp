@@ -39,6 +39,8 @@ double FrictionalContact::kinetic_energy() const {
   return sim::kinetic_energy(run_.body.mass, R * run_.body.inertia * R.transpose(), {velocity_, omega_});
 }
 
+bool FrictionalContact::stalled() const { return stalls_ >= 2 * kStalls; }
+
 int FrictionalContact::sticking() const {
   return static_cast<int>(std::count(forces_.modes.begin(), forces_.modes.end(), ContactMode::stick));
 }
@@ -59,8 +61,9 @@ std::optional<RestPose> FrictionalContact::step() {
   const double end = std::min({event_, step_end_, run.tol.max_time, run.limit});
   move_to(end);
   if (end == event_) step_end_ = end;  // a new segment starts at the event
-  // Segments that end at once, one after another (a slip that stops as soon as it is taken as sliding), are
-  // bounded: after kStalls of them the next segment takes every point as at rest on the wall.
+  // Segments that end at once, one after another (a slip that stops as soon as it is taken as sliding, an
+  // event found again at once), are bounded: after kStalls of them the next segment takes every point as at
+  // rest on the wall; after kStalls more the engine hands the run to the paper's phase (stalled()).
   stalls_ = end - segment_start_ <= kStallTime * run.tol.time_scale ? stalls_ + 1 : 0;
   hold_ = stalls_ >= kStalls;
   return std::nullopt;

@@ -34,6 +34,8 @@ class FrictionalContact {
 
   const Vec3& velocity() const { return velocity_; }
   double start_time() const { return start_time_; }
+  /// Segments kept ending at once even with every point taken as at rest: the engine hands over.
+  bool stalled() const;
   const Vec3& omega() const { return omega_; }
   double kinetic_energy() const;
   int contact_count() const { return static_cast<int>(active_.size()); }
