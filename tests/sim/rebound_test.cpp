@@ -18,10 +18,12 @@ namespace {
 constexpr double kG = 9.81;
 
 // The sanitizer build runs the engine ~10x slower: fewer tosses there (the claims hold for every toss).
+// With finite friction a toss ends in the frictional contact phase, up to seconds for a polygon rolling on
+// its rim (src/sim/phases/frictional_contact.hpp): 12 tosses per shape (3 under the sanitizers).
 #ifdef NDEBUG
-constexpr int kTossesPerShape = 25;
+constexpr int kTossesPerShape = 12;
 #else
-constexpr int kTossesPerShape = 6;
+constexpr int kTossesPerShape = 3;
 #endif
 
 // The orientation that puts hull vertex k straight below the centre of mass.
@@ -238,7 +240,7 @@ TEST(Rebound, RandomTossesNeverCreateEnergyNorSinkBelowTheWall) {
       impacts += static_cast<long>(r.impacts.size());
     }
   }
-  EXPECT_GT(impacts, 6 * 4 * kTossesPerShape);  // impacts are exercised: over 1,000 in the 150 tosses
+  EXPECT_GT(impacts, 6 * 4 * kTossesPerShape);  // impacts are exercised: several per toss
 }
 
 TEST(Rebound, TheHandOverKeepsTheAngularMomentumAboutTheStruckVertex) {
