@@ -3,7 +3,6 @@
 
 #include <algorithm>
 
-
 namespace repose::sim {
 
 ContactForces contact_forces(const ContactBody& body, const Motion& motion, const std::vector<Vec3>& arms,

@@ -25,7 +25,7 @@ struct ContactForces {
   Vec3 acceleration = Vec3::Zero();          ///< of the centre of mass
   Vec3 angular_acceleration = Vec3::Zero();  ///< world frame
   bool converged = true;
-  int painleve = 0;  ///< sliding points with no consistent normal force (Painlevé's paradox)
+  int painleve = 0;                ///< sliding points with no consistent normal force (Painlevé's paradox)
   std::vector<char> inconsistent;  ///< which points those are (1: Painlevé's case at that point)
 };
 

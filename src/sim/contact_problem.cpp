@@ -129,7 +129,8 @@ Vec3 local_reaction(const Mat3& W, const Vec3& f, double mu, const PointConditio
     if (stick.z() > 0 && stick.head<2>().norm() <= mu * stick.z()) return stick;
     // Sliding: P = (−μλŝ, λ) with u_n = 0 and ŝ the direction of u_t after.
     const std::optional<Vec3> sliding = sliding_reaction(
-        W, f, mu, tiny, ft.norm() > tiny ? Vec2(ft.normalized()) : Vec2(-stick.head<2>().normalized()), -1, scans);
+        W, f, mu, tiny, ft.norm() > tiny ? Vec2(ft.normalized()) : Vec2(-stick.head<2>().normalized()), -1,
+        scans);
     if (sliding) return *sliding;
     ++counts.unresolved;  // the frictionless plastic reaction instead
     return Vec3(0, 0, -f.z() / W(2, 2));

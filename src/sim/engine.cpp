@@ -112,8 +112,8 @@ double Engine::kinetic_energy() const {
   return std::visit(
       Overloaded{[](const Flight& f) { return f.kinetic_energy(); },
                  [](const Contact& c) { return c.kinetic_energy(); },
-                 [](const FrictionalContact& c) { return c.kinetic_energy(); }, [](const Rest&) { return 0.0; },
-                 [](const Stopped& s) { return s.kinetic_energy; }},
+                 [](const FrictionalContact& c) { return c.kinetic_energy(); },
+                 [](const Rest&) { return 0.0; }, [](const Stopped& s) { return s.kinetic_energy; }},
       phase_);
 }
 

@@ -1,8 +1,8 @@
 // Internal: the settling engine — a state machine over named phases (docs/method.md, "Phases").
 //
 //   flight ──touch──▶ impact ──rebound──▶ flight
-//      │                 ├──hand-over──▶ contact ──rest──▶ rest                (friction infinite: the paper's)
-//      │                 └──hand-over──▶ frictional contact ──rest──▶ rest     (finite friction)
+//      │                 ├──hand-over──▶ contact ──rest──▶ rest                (friction infinite: the
+//      paper's) │                 └──hand-over──▶ frictional contact ──rest──▶ rest     (finite friction)
 //      └──touch (the paper's: translation stops)──▶ contact
 //   any phase ──time or step limit──▶ stopped
 //

@@ -13,7 +13,7 @@ namespace repose::sim {
 
 namespace tol {
 // ---- lengths, × L
-inline constexpr double kTouch = 1e-9;   ///< a vertex this close to the wall is on it (touching set)
+inline constexpr double kTouch = 1e-9;  ///< a vertex this close to the wall is on it (touching set)
 /// The frictional contact phase's points on the wall: within this of it and not leaving. A hundred times the
 /// touching tolerance, so that the integrator's drift (its tolerance, 1e-9 of L per step at most) never
 /// takes a point pressed on the wall out of the set between two steps.
@@ -113,17 +113,17 @@ struct Tolerances {
   /// a rocking or hopping body's rebounds do not cascade without end.
   double separation_speed = 0;
   double still_acceleration = 0;  ///< an acceleration below this is none (kAccel·g), length/time²
-  double still_energy = 0;     ///< kinetic energy below this is no motion, mass·length²/time²
-  double axis_rate = 0;        ///< an angular velocity below this has no axis, rad/time
-  double balance_offset = 0;   ///< how far beyond an edge balance the centre of mass is put, length
-  double reach_slack = 0;      ///< see tol::kReachSlack, length
-  double energy_margin = 0;    ///< the integrator's energy error allowed for, mass·length²/time²
-  double dt = 0;               ///< paper: the step; adaptive: the longest step (time)
-  double first_step = 0;       ///< the adaptive integrator's first trial step from rest (time)
-  double flight_max_step = 0;  ///< a spinning flight's longest step (time)
-  double rebound_window = 0;   ///< the impact rule's step (impact_support.hpp): dt, or 0.05·τ (adaptive)
-  double max_time = 0;         ///< the run's time limit (time)
-  double frictional_time = 0;  ///< the frictional contact phase's longest (time), kFrictionalTime
+  double still_energy = 0;        ///< kinetic energy below this is no motion, mass·length²/time²
+  double axis_rate = 0;           ///< an angular velocity below this has no axis, rad/time
+  double balance_offset = 0;      ///< how far beyond an edge balance the centre of mass is put, length
+  double reach_slack = 0;         ///< see tol::kReachSlack, length
+  double energy_margin = 0;       ///< the integrator's energy error allowed for, mass·length²/time²
+  double dt = 0;                  ///< paper: the step; adaptive: the longest step (time)
+  double first_step = 0;          ///< the adaptive integrator's first trial step from rest (time)
+  double flight_max_step = 0;     ///< a spinning flight's longest step (time)
+  double rebound_window = 0;      ///< the impact rule's step (impact_support.hpp): dt, or 0.05·τ (adaptive)
+  double max_time = 0;            ///< the run's time limit (time)
+  double frictional_time = 0;     ///< the frictional contact phase's longest (time), kFrictionalTime
 };
 
 /// The tolerances of a run of `particle` (mass m) with `params` (validated).

@@ -162,7 +162,8 @@ TEST(FrictionalContact, RodFootSlipsAtTheClosedFormAngle) {
     const auto ratio = [&](double phi) {
       const double w2 = 2 * m * kG * r * (std::cos(phi0) - std::cos(phi)) / io;
       const double al = m * kG * r * std::sin(phi) / io;
-      return r * (al * std::cos(phi) - w2 * std::sin(phi)) / (kG - r * (al * std::sin(phi) + w2 * std::cos(phi)));
+      return r * (al * std::cos(phi) - w2 * std::sin(phi)) /
+             (kG - r * (al * std::sin(phi) + w2 * std::cos(phi)));
     };
     double lo = phi0, hi = phi0;
     while (ratio(hi) < mu) {

@@ -45,7 +45,7 @@ struct Sample {
   Vec3 omega = Vec3::Zero();  ///< angular velocity, world frame (rad/time)
   Vec3 com = Vec3::Zero();    ///< centre of mass, world frame
   ContactType contact = ContactType::free_fall;
-  int contact_count = 0;        ///< hull vertices within ε of the wall
+  int contact_count = 0;  ///< hull vertices within ε of the wall
   /// With finite friction after the landing (the frictional contact phase): of the points pressed on the
   /// wall, how many stick and how many slide (both 0 in flight and in the paper's phase).
   int sticking = 0;

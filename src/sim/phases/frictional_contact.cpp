@@ -251,7 +251,8 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
   // The contact type by the points on the wall (flight when none).
   const std::size_t n = active_.size();
   if (run.trace)
-    std::fprintf(stderr, "t=%.12g frictional points=%zu stick=%d slide=%d painleve=%d v=%g,%g,%g omega=%g,%g,%g\n",
+    std::fprintf(stderr,
+                 "t=%.12g frictional points=%zu stick=%d slide=%d painleve=%d v=%g,%g,%g omega=%g,%g,%g\n",
                  run.t, n, sticking(), sliding(), run.record.painleve, velocity_.x(), velocity_.y(),
                  velocity_.z(), omega_.x(), omega_.y(), omega_.z());
   run.record.set_type(n == 0   ? ContactType::flight
@@ -267,7 +268,8 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
   if (n > 0 && !slides && kinetic_energy() <= run.tol.rest_energy) {
     std::vector<int> band;  // every point within the band, leaving or not: the body cannot leave it
     for (std::size_t k = 0; k < verts.size(); ++k)
-      if (run.com.z() + (run.q * verts[k]).z() <= run.tol.frictional_band) band.push_back(static_cast<int>(k));
+      if (run.com.z() + (run.q * verts[k]).z() <= run.tol.frictional_band)
+        band.push_back(static_cast<int>(k));
     const ContactForces still = forces_at({run.com, Vec3::Zero(), run.q, Vec3::Zero()}, band,
                                           std::vector<PointCondition>(band.size()));
     if (still.acceleration.norm() <= run.tol.still_acceleration &&
@@ -317,7 +319,8 @@ BodyRates FrictionalContact::rates(const BodyState& s) const {
     r.acceleration = Vec3(0, 0, -run_.params.gravity);
     const Mat3 R = s.q.toRotationMatrix();
     const Mat3 inertia = R * run_.body.inertia * R.transpose();
-    r.angular_acceleration = inertia.inverse() * (-run_.params.damping * s.omega - s.omega.cross(inertia * s.omega));
+    r.angular_acceleration =
+        inertia.inverse() * (-run_.params.damping * s.omega - s.omega.cross(inertia * s.omega));
   } else {
     const ContactForces f = forces_at(s);
     r.acceleration = f.acceleration;
