@@ -2,6 +2,7 @@
 #include "contact_problem.hpp"
 
 #include <algorithm>
+#include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
 #include <optional>
 
@@ -12,16 +13,8 @@ namespace {
 // Block Gauss–Seidel sweeps: a face's 4 to 40 points converge in tens of sweeps to the tolerance; the bound
 // keeps an ill-conditioned set (many nearly coincident points) finite.
 constexpr int kMaxSweeps = 5000;
-// Fixed-point iterations of one sliding point's direction: each contracts the angle by the ratio of the
-// slip's change to the slip; the bound keeps a point whose slip ends within the impact finite.
-constexpr int kMaxDirectionIterations = 100;
-// Samples of the direction's angle when the fixed point does not converge; each sign change is bisected.
-constexpr int kScan = 256;
-constexpr int kScans = 1000000;
 // A sweep that changes no point's value by more than this fraction of the scale has converged.
 constexpr double kConverged = 1e-14;
-// Below this fraction of the scale a value is zero (round-off).
-constexpr double kTiny = 1e-14;
 
 // What a sweep met: sliding points with no consistent normal reaction, points whose sliding direction was not
 // found.
@@ -30,85 +23,67 @@ struct Counts {
   int unresolved = 0;
 };
 
-// The sliding reaction R = (−μλŝ, λ) of one point with x_n = 0 and ŝ the direction of its x_t with it:
-// x_t(ŝ) = f_t + λ(ŝ)·(W_tn − μ·W_tt·ŝ) with λ(ŝ) = −f_n / (W_nn − μ·W_nt·ŝ) must point along ŝ. A
-// fixed-point iteration from `guess` finds it in a few steps where the slip turns little; otherwise the angle
-// of ŝ is scanned (kScan samples) and the sign change of ŝ × u_t bisected. With `given_normal` ≥ 0, λ is that
-// (restitution) and x_n is whatever it gives.
-std::optional<Vec3> sliding_reaction(const Mat3& W, const Vec3& f, double mu, double tiny, Vec2 s,
-                                     double given_normal, int& scans) {
-  const Eigen::Matrix2d wtt = W.topLeftCorner<2, 2>();
+// The sliding reaction R = (−p, λ) of one point, p = μ·λ·ŝ, with the slip after it, x_t = b − A·p, along ŝ
+// (friction opposes the slip). Along ŝ means b − A·p = β·p for some β ≥ 0, so p(β) = (A + β·I)⁻¹·b, and the
+// reaction is on the cone's edge, |p| = μ·λ(p) with λ(p) = c0 + c·p: a root in β of the secular equation
+// φ(β) = |p(β)| − μ·λ(p(β)), as in a trust region's step (Moré & Sorensen 1983).
+//   unilateral (x_n = 0): A = W_tt − w_tn·w_ntᵀ/W_nn (a Schur complement of W, symmetric positive definite),
+//                         b = f_t − w_tn·f_n/W_nn, λ(p) = (w_nt·p − f_n)/W_nn;
+//   given normal λ:       A = W_tt, b = f_t + λ·w_tn, λ(p) = λ.
+// Called where sticking (β = 0) is outside the cone, φ(0) > 0; as β → ∞, p → 0 and φ → −μ·λ(0) < 0: a root
+// exists. The bracket is found by halving or doubling β from the scale trace(A) and closed by TOMS 748
+// (Alefeld, Potra & Shi 1995). Where φ has several roots (Painlevé's non-uniqueness at a point at rest) the
+// one found this way is taken. Empty only when the data are not finite.
+std::optional<Vec3> sliding_reaction(const Mat3& W, const Vec3& f, double mu, double given_normal) {
+  const bool unilateral = given_normal < 0;
   const Vec2 wtn = W.block<2, 1>(0, 2), wnt = W.block<1, 2>(2, 0).transpose();
-  const Vec2 ft = f.head<2>();
-  const auto lambda_of = [&](const Vec2& dir) {
-    return given_normal >= 0 ? given_normal : -f.z() / (W(2, 2) - mu * wnt.dot(dir));
+  const Eigen::Matrix2d A = unilateral
+                                ? Eigen::Matrix2d(W.topLeftCorner<2, 2>() - wtn * wnt.transpose() / W(2, 2))
+                                : Eigen::Matrix2d(W.topLeftCorner<2, 2>());
+  const Vec2 b =
+      unilateral ? Vec2(f.head<2>() - wtn * f.z() / W(2, 2)) : Vec2(f.head<2>() + given_normal * wtn);
+  const double c0 = unilateral ? -f.z() / W(2, 2) : given_normal;
+  const Vec2 c = unilateral ? Vec2(wnt / W(2, 2)) : Vec2::Zero();
+  if (!A.allFinite() || !b.allFinite() || !std::isfinite(c0) || !(c0 >= 0)) return std::nullopt;
+  if (!(mu * c0 > 0) || !(b.norm() > 0)) return Vec3(0, 0, c0);  // no friction to apply
+  const auto p_of = [&](double beta) -> Vec2 {
+    const double a = A(0, 0) + beta, d = A(1, 1) + beta, off = A(0, 1);
+    const double det = a * d - off * off;
+    return Vec2(d * b.x() - off * b.y(), a * b.y() - off * b.x()) / det;
   };
-  const auto slip_of = [&](const Vec2& dir) -> Vec2 { return ft + lambda_of(dir) * (wtn - mu * wtt * dir); };
-  // ŝ is consistent: λ > 0 and the slip along it (or stopped, to round-off).
-  const auto consistent = [&](const Vec2& dir) {
-    const double lambda = lambda_of(dir);
-    if (!(lambda > 0) || !std::isfinite(lambda)) return false;
-    const Vec2 ut = slip_of(dir);
-    return ut.norm() <= tiny ||
-           (ut.dot(dir) > 0 && std::abs(dir.x() * ut.y() - dir.y() * ut.x()) <= 1e-13 * ut.norm());
+  const auto phi = [&](double beta) {
+    const Vec2 p = p_of(beta);
+    return p.norm() - mu * (c0 + c.dot(p));
   };
-  const auto impulse = [&](const Vec2& dir) {
-    const double lambda = lambda_of(dir);
-    return Vec3(-mu * lambda * dir.x(), -mu * lambda * dir.y(), lambda);
-  };
-  for (int k = 0; k < kMaxDirectionIterations; ++k) {
-    if (consistent(s)) return impulse(s);
-    const Vec2 ut = slip_of(s);
-    if (!(lambda_of(s) > 0) || !(ut.norm() > 0)) break;
-    s = ut.normalized();
+  // The bracket [lo, hi] with φ(lo) > 0 ≥ φ(hi); each search is bounded (2^±1100 covers every double).
+  double hi = std::max(A.trace(), 1e-300), lo = 0;
+  if (phi(hi) > 0) {
+    lo = hi;
+    for (int k = 0; k < 1100 && phi(hi) > 0; ++k) lo = hi, hi *= 2;
+  } else {
+    for (int k = 0; k < 1100 && hi > 0 && !(phi(0.5 * hi) > 0); ++k) hi *= 0.5;
+    lo = 0.5 * hi;
+    if (!(phi(lo) > 0)) lo = 0;
   }
-  // g(θ) = ŝ(θ) × u_t(ŝ(θ)), zero where the slip is along ŝ (consistent where λ > 0 and u_t·ŝ > 0).
-  const auto dir = [](double theta) { return Vec2(std::cos(theta), std::sin(theta)); };
-  const auto g = [&](double theta) {
-    const Vec2 d = dir(theta), ut = slip_of(d);
-    return d.x() * ut.y() - d.y() * ut.x();
-  };
-  // First a bracket near where the iteration ended (it is usually close, converging slowly), widening,
-  // bisected; then the whole circle's scan.
-  const auto bisect = [&](double lo, double hi, double g_lo) {
-    for (int b = 0; b < 60; ++b) {
-      const double mid = 0.5 * (lo + hi), g_mid = g(mid);
-      ((g_mid > 0) == (g_lo > 0) ? lo : hi) = mid;
-      if ((g_mid > 0) == (g_lo > 0)) g_lo = g_mid;
-    }
-    return dir(0.5 * (lo + hi));
-  };
-  if (s.allFinite() && s.norm() > 0) {
-    const double centre = std::atan2(s.y(), s.x());
-    for (const double half : {1e-4, 1e-2, 0.2}) {
-      const double lo = centre - half, hi = centre + half;
-      if (!(lambda_of(dir(lo)) > 0) || !(lambda_of(dir(hi)) > 0)) continue;
-      const double g_lo = g(lo);
-      if ((g_lo > 0) == (g(hi) > 0)) continue;
-      const Vec2 d = bisect(lo, hi, g_lo);
-      if (lambda_of(d) > 0 && (slip_of(d).dot(d) > 0 || slip_of(d).norm() <= tiny)) return impulse(d);
-    }
+  const double f_lo = phi(lo), f_hi = phi(hi);
+  if (!(f_lo > 0) || f_hi > 0) return std::nullopt;
+  double beta = hi;
+  if (f_hi < 0) {
+    std::uintmax_t iterations = 200;
+    const auto root = boost::math::tools::toms748_solve(
+        phi, lo, hi, f_lo, f_hi, boost::math::tools::eps_tolerance<double>(52), iterations);
+    beta = 0.5 * (root.first + root.second);
   }
-  // The whole circle's scans of a point in one solve are bounded (kScans; never reached in the tests: a
-  // budget of 4 or 16 left the slip onset of a rod's foot frictionless, so the bound is only a bound).
-  if (scans <= 0) return std::nullopt;
-  --scans;
-  const double step = 2 * 3.141592653589793 / kScan;
-  for (int k = 0; k < kScan; ++k) {
-    double lo = k * step, hi = lo + step;
-    if (!(lambda_of(dir(lo)) > 0) || !(lambda_of(dir(hi)) > 0)) continue;
-    const double g_lo = g(lo);
-    if ((g_lo > 0) == (g(hi) > 0)) continue;
-    const Vec2 d = bisect(lo, hi, g_lo);
-    if (slip_of(d).dot(d) > 0 || slip_of(d).norm() <= tiny) return impulse(d);
-  }
-  return std::nullopt;  // none found (not met in the tests): the caller flags it
+  const Vec2 p = p_of(beta);
+  if (!(p.norm() > 0)) return Vec3(0, 0, c0);
+  const Vec2 s = p.normalized();
+  const double lambda = std::max(c0 + c.dot(p), 0.0);
+  return Vec3(-mu * lambda * s.x(), -mu * lambda * s.y(), lambda);
 }
 
 // One point's reaction given its value `f` without it (the others' reactions included) and its own block W of
 // the Delassus matrix (x = f + W·R), by its rule (contact_problem.hpp).
-Vec3 local_reaction(const Mat3& W, const Vec3& f, double mu, const PointCondition& c, double tiny,
-                    Counts& counts, int& scans) {
+Vec3 local_reaction(const Mat3& W, const Vec3& f, double mu, const PointCondition& c, Counts& counts) {
   const Eigen::Matrix2d wtt = W.topLeftCorner<2, 2>();
   const Vec2 wtn = W.block<2, 1>(0, 2);
   const Vec2 ft = f.head<2>();
@@ -128,9 +103,7 @@ Vec3 local_reaction(const Mat3& W, const Vec3& f, double mu, const PointConditio
     const Vec3 stick = -W.ldlt().solve(f);
     if (stick.z() > 0 && stick.head<2>().norm() <= mu * stick.z()) return stick;
     // Sliding: P = (−μλŝ, λ) with u_n = 0 and ŝ the direction of u_t after.
-    const std::optional<Vec3> sliding = sliding_reaction(
-        W, f, mu, tiny, ft.norm() > tiny ? Vec2(ft.normalized()) : Vec2(-stick.head<2>().normalized()), -1,
-        scans);
+    const std::optional<Vec3> sliding = sliding_reaction(W, f, mu, -1);
     if (sliding) return *sliding;
     ++counts.unresolved;  // the frictionless plastic reaction instead
     return Vec3(0, 0, -f.z() / W(2, 2));
@@ -138,8 +111,7 @@ Vec3 local_reaction(const Mat3& W, const Vec3& f, double mu, const PointConditio
   // The normal impulse given: the tangential one that stops the slip, if the cone allows, else sliding.
   const Vec2 stick = -wtt.ldlt().solve(ft + wtn * normal);
   if (stick.norm() <= mu * normal) return Vec3(stick.x(), stick.y(), normal);
-  const std::optional<Vec3> sliding = sliding_reaction(
-      W, f, mu, tiny, ft.norm() > tiny ? Vec2(ft.normalized()) : Vec2(-stick.normalized()), normal, scans);
+  const std::optional<Vec3> sliding = sliding_reaction(W, f, mu, normal);
   if (sliding) return *sliding;
   ++counts.unresolved;  // no tangential reaction instead
   return Vec3(0, 0, normal);
@@ -164,10 +136,8 @@ ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const V
   const std::size_t n = p.arms.size();
   std::vector<Mat3> diagonal(n);
   for (std::size_t i = 0; i < n; ++i) diagonal[i] = delassus_block(p.mass, p.inverse_inertia, p.arms[i]);
-  const double tiny = kTiny * p.scale;
   ContactSolution s;
   s.reactions.assign(n, Vec3::Zero());
-  std::vector<int> scans(n, kScans);
   s.lin = lin;
   s.ang = ang;
   for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
@@ -176,7 +146,7 @@ ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const V
     Counts counts;
     for (std::size_t i = 0; i < n; ++i) {
       const Vec3 f = point_value(p, i, s.lin, s.ang) - diagonal[i] * s.reactions[i];
-      const Vec3 next = local_reaction(diagonal[i], f, p.friction, conditions[i], tiny, counts, scans[i]);
+      const Vec3 next = local_reaction(diagonal[i], f, p.friction, conditions[i], counts);
       const Vec3 delta = next - s.reactions[i];
       s.lin += delta / p.mass;
       s.ang += p.inverse_inertia * p.arms[i].cross(delta);

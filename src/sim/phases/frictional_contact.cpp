@@ -88,11 +88,18 @@ void FrictionalContact::classify() {
   const auto& verts = run.particle.hull.vertices;
   active_.clear();
   conditions_.clear();
+  leaving_slowly_.clear();
   for (std::size_t k = 0; k < verts.size(); ++k) {
     const Vec3 arm = run.q * verts[k];
-    if (run.com.z() + arm.z() > run.tol.frictional_band) continue;
+    const double z = run.com.z() + arm.z();
+    if (z > run.tol.frictional_band) continue;
     const Vec3 u = velocity_ + omega_.cross(arm);
-    if (u.z() > run.tol.speed) continue;  // leaving
+    if (u.z() > run.tol.speed) {  // leaving
+      if (u.z() <= run.tol.separation_speed) leaving_slowly_.push_back(static_cast<int>(k));
+      continue;
+    }
+    // Approaching, not yet at the wall: it strikes where it reaches it (an event), not early in the band.
+    if (u.z() < -run.tol.speed && z > tol::kPierceFloor * run.tol.event) continue;
     active_.push_back(static_cast<int>(k));
     PointCondition c;
     const Vec2 slip = u.head<2>();
@@ -102,117 +109,6 @@ void FrictionalContact::classify() {
     }
     conditions_.push_back(c);
   }
-}
-
-// Points approaching the wall strike it (Stronge's E and Coulomb's μ; several at once by the multi-point law
-// with every point on the wall); a touch too slow to leave the band again is plastic. True if any did.
-bool FrictionalContact::resolve_impacts() {
-  Run& run = run_;
-  std::vector<Vec3> arms;
-  double fastest = 0;
-  for (int k : active_) {
-    const Vec3 arm = run.q * run.particle.hull.vertices[static_cast<std::size_t>(k)];
-    arms.push_back(arm);
-    fastest = std::max(fastest, -(velocity_ + omega_.cross(arm)).z());
-  }
-  if (fastest <= run.tol.speed) return false;
-  const ImpactLaw law{fastest > run.tol.separation_speed ? run.params.restitution : 0.0, run.params.friction};
-  const Impact::Outcome out = Impact(run).resolve({velocity_, omega_}, arms, law, true);
-  velocity_ = out.motion.velocity;
-  omega_ = out.motion.omega;
-  return true;
-}
-
-// The least-norm impulses at the points `arms` that bring them to rest: their velocities are u = u0 + W·P
-// with W the stacked Delassus matrix (blocks K_ij); an edge's two corners leave the rotation about it free.
-Eigen::VectorXd FrictionalContact::stopping_impulses(const std::vector<Vec3>& arms) const {
-  const Mat3 R = run_.q.toRotationMatrix();
-  const Mat3 inverse_inertia = R * run_.body.inertia.inverse() * R.transpose();
-  const double m = run_.body.mass;
-  const std::size_t n = arms.size();
-  Eigen::MatrixXd W(3 * n, 3 * n);
-  Eigen::VectorXd u0(3 * n);
-  const auto cross = [](const Vec3& r) {
-    Mat3 x;
-    x << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
-    return x;
-  };
-  for (std::size_t i = 0; i < n; ++i) {
-    u0.segment<3>(3 * i) = velocity_ + omega_.cross(arms[i]);
-    for (std::size_t j = 0; j < n; ++j)
-      W.block<3, 3>(3 * i, 3 * j) = Mat3::Identity() / m - cross(arms[i]) * inverse_inertia * cross(arms[j]);
-  }
-  return W.completeOrthogonalDecomposition().solve(-u0);
-}
-
-// Sticking points keep a residual velocity, the integrator's drift (below slip_speed along the wall, below
-// speed across it): it is taken out at each segment's start, so that it neither accumulates into a slip
-// nor into a depth. The kinetic energy this removes is at most ½·m·slip_speed² (5e-13·m·g·L).
-void FrictionalContact::hold_sticking_points() {
-  std::vector<Vec3> arms;
-  for (std::size_t i = 0; i < active_.size(); ++i)
-    if (i < forces_.modes.size() && forces_.modes[i] == ContactMode::stick &&
-        conditions_[i].rule == PointRule::unilateral)
-      arms.push_back(run_.q * run_.particle.hull.vertices[static_cast<std::size_t>(active_[i])]);
-  if (arms.empty()) return;
-  const Eigen::VectorXd P = stopping_impulses(arms);
-  const Mat3 R = run_.q.toRotationMatrix();
-  const Mat3 inverse_inertia = R * run_.body.inertia.inverse() * R.transpose();
-  for (std::size_t i = 0; i < arms.size(); ++i) {
-    const Vec3 p = P.segment<3>(3 * i);
-    velocity_ += p / run_.body.mass;
-    omega_ += inverse_inertia * arms[i].cross(p);
-  }
-}
-
-// Painlevé's inconsistent case at sliding points (no normal force holds them on the wall): an impact without
-// collision (Génot & Brogliato 1999), the dynamic jam ending in sticking — the impulses at those points, all
-// at once, that stop them (the least-norm ones: an edge's two corners leave the rotation about it free),
-// each kept in its friction cone (a negative normal impulse dropped, a tangential one beyond the cone
-// projected onto it). Counted, and recorded as an impact. True if any point met it.
-bool FrictionalContact::resolve_painleve() {
-  Run& run = run_;
-  std::vector<Vec3> arms;
-  for (std::size_t i = 0; i < active_.size(); ++i)
-    if (i < forces_.inconsistent.size() && forces_.inconsistent[i])
-      arms.push_back(run.q * run.particle.hull.vertices[static_cast<std::size_t>(active_[i])]);
-  if (arms.empty()) return false;
-  run.record.painleve += static_cast<int>(arms.size());
-  const Mat3 R = run.q.toRotationMatrix();
-  const Mat3 inertia = R * run.body.inertia * R.transpose();
-  const Mat3 inverse_inertia = inertia.inverse();
-  const double m = run.body.mass;
-  const std::size_t n = arms.size();
-  Eigen::VectorXd u0(3 * n);
-  for (std::size_t i = 0; i < n; ++i) u0.segment<3>(3 * i) = velocity_ + omega_.cross(arms[i]);
-  const Eigen::VectorXd P = stopping_impulses(arms);
-  ImpactRecord record;
-  record.t = run.t;
-  record.points = static_cast<int>(n);
-  record.stick = true;
-  record.energy_before = sim::kinetic_energy(m, inertia, {velocity_, omega_}) + run.potential_energy();
-  Vec3 centre = Vec3::Zero();
-  double total = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    Vec3 p = P.segment<3>(3 * i);
-    if (!(p.z() > 0)) continue;
-    const double cone = run.params.friction * p.z(), t = p.head<2>().norm();
-    if (t > cone) p.head<2>() *= cone / t;
-    velocity_ += p / m;
-    omega_ += inverse_inertia * arms[i].cross(p);
-    centre += p.z() * arms[i];
-    total += p.z();
-  }
-  const Vec3 at = total > 0 ? Vec3(centre / total) : arms[0];
-  const Vec3 before = Vec3(u0.segment<3>(0)), after = velocity_ + omega_.cross(at);
-  record.point = run.com + at;
-  record.normal_speed_before = before.z();
-  record.tangential_speed_before = before.head<2>().norm();
-  record.normal_speed_after = after.z();
-  record.tangential_speed_after = after.head<2>().norm();
-  record.energy_after = sim::kinetic_energy(m, inertia, {velocity_, omega_}) + run.potential_energy();
-  run.record.impacts.push_back(record);
-  return true;
 }
 
 std::optional<RestPose> FrictionalContact::begin_segment() {
@@ -241,6 +137,7 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
     classify();
     if (resolve_impacts()) continue;
     forces_ = forces_at({run.com, velocity_, run.q, omega_});
+    if (capture_returning_points()) continue;
     settled = !resolve_painleve();
   }
   if (!settled) {  // the rounds' bound: the points as they are now
@@ -352,10 +249,12 @@ double FrictionalContact::locate_event(double a, double b) {
   std::vector<char> on(verts.size(), 0);
   for (int k : active_) on[static_cast<std::size_t>(k)] = 1;
   const double sinking = -tol::kPierceFloor * run.tol.event;
+  // Only the height is needed: the third row of the rotation.
   const auto touches = [&](double t) {
     const BodyState s = integrator_.state_at(t);
+    const Vec3 up = s.q.toRotationMatrix().row(2).transpose();
     for (std::size_t k = 0; k < verts.size(); ++k)
-      if (s.com.z() + (s.q * verts[k]).z() < (on[k] ? sinking : 0.0)) return true;
+      if (s.com.z() + up.dot(verts[k]) < (on[k] ? sinking : 0.0)) return true;
     return false;
   };
   // A sliding point's slip stopping, or turning against its direction at the segment's start.

@@ -48,6 +48,7 @@ class FrictionalContact {
   std::optional<RestPose> begin_segment();
   void classify();
   bool resolve_impacts();
+  bool capture_returning_points();
   bool resolve_painleve();
   void hold_sticking_points();
   Eigen::VectorXd stopping_impulses(const std::vector<Vec3>& arms) const;
@@ -65,6 +66,7 @@ class FrictionalContact {
   BodyLedger ledger_;
   std::vector<int> active_;                 // hull vertices on the wall and not leaving it
   std::vector<PointCondition> conditions_;  // their rules for this segment
+  std::vector<int> leaving_slowly_;         // in the band, leaving slower than the separation speed
   ContactForces forces_;                    // at the segment's start
   double step_end_ = -INFINITY;
   double event_ = INFINITY;
