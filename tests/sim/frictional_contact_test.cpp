@@ -85,6 +85,52 @@ TEST(FrictionalContact, TallBoxTipsIfAndOnlyIfMuExceedsOneThird) {
   }
 }
 
+// A 32-gon disk (circumradius R = 0.5, thickness 0.1) lying on its face, spun at ω0 = 5 about its axis with μ
+// = 0.3: its 32 corners, all on the rim, slide along it, each pressed by m·g/32 (the linear pressure of the
+// planar sliding face is uniform by symmetry), so friction's torque is μ·m·g·R and the spin stops at
+// T = J·ω0/(μ·m·g·R), J = m·R²·(1 + 2·cos²(π/32))/6 the regular polygon's polar moment, after turning ω0·T/2,
+// the centre never moving. The deceleration is constant (integrated exactly); the stop is located where the
+// rim's slip falls below 1e-9·sqrt(g·L), 4e-10 s early at most: tolerance 1e-8·τ, and on the angle ω0 times
+// it.
+TEST(FrictionalContact, SpinningDiskStopsWhereFrictionsTorqueSays) {
+  const Particle disk = load_particle("cylinder:r=0.5,h=0.1,n=32", 1000.0);
+  const double m = disk.mass.mass, R = 0.5, mu = 0.3, w0 = 5, tau = std::sqrt(disk.length / kG);
+  const double J = m * R * R * (1 + 2 * std::pow(std::cos(kPi / 32), 2)) / 6;
+  SettleParams p;
+  p.friction = mu;
+  p.spin = Vec3(0, 0, w0);
+  const SettleResult r = settle(disk, p, Quat::Identity());
+  ASSERT_EQ(r.status, Status::rest);
+  const double T = J * w0 / (mu * m * kG * R);
+  EXPECT_NEAR(r.time, T, 1e-8 * tau);
+  EXPECT_NEAR(r.orientation.angularDistance(Quat::Identity()), w0 * T / 2, w0 * 1e-8 * tau);
+  EXPECT_NEAR(r.com.head<2>().norm(), 0, 1e-12);
+  EXPECT_TRUE(r.impacts.empty());
+  EXPECT_NEAR(r.friction_work, 0.5 * J * w0 * w0, 1e-9 * m * kG * disk.length);
+}
+
+// A 32-gon cylinder (R = 0.5, h = 1) standing on its end, launched sliding along x: friction's moment
+// μ·m·g·h/2 moves the centre of pressure forward by e = μ·h/2. Linear pressure over the rim's corners would
+// turn negative at the back for e > R/2 (μ > 0.5), so the back corners carry nothing; the base tips only when
+// the centre of pressure leaves it, at the front corner (x = R): μ > 2R/h = 1. Below that it slides flat to
+// the closed form (tolerances as the sliding box's); above it the back rim lifts (0.02 s later above 1e-9·L).
+TEST(FrictionalContact, StandingCylinderSlidesOnAPartlyLoadedBaseUntilItTips) {
+  const Particle cyl = load_particle("cylinder:r=0.5,h=1,n=32", 1000.0);
+  const double L = cyl.length, tau = std::sqrt(L / kG), v0 = 1.5;
+  for (const double mu : {0.3, 0.6, 0.8, 0.98}) {
+    const SettleResult r = settle(cyl, sliding_start(Vec3(v0, 0, 0), mu), Quat::Identity());
+    ASSERT_EQ(r.status, Status::rest) << mu;
+    EXPECT_NEAR(r.com.x(), v0 * v0 / (2 * mu * kG), 1e-12 * L) << "mu " << mu;
+    EXPECT_NEAR(r.time, v0 / (mu * kG), 2e-9 * tau / mu) << "mu " << mu;
+    EXPECT_NEAR(r.orientation.angularDistance(Quat::Identity()), 0, 1e-12) << "mu " << mu << ": no pitch";
+    EXPECT_TRUE(r.impacts.empty()) << "mu " << mu;
+  }
+  Settler settler(cyl, sliding_start(Vec3(v0, 0, 0), 1.02), Quat::Identity());
+  settler.advance_to(0.02);
+  const Sample s = settler.sample();
+  EXPECT_GT((s.com + s.orientation * Vec3(-0.5, 0, -0.5)).z(), 1e-9 * L) << "mu 1.02: the back rim lifts";
+}
+
 // A solid cylinder lying on its side (a 256-gon prism), launched sliding at v0 without spin: friction
 // decelerates it at μ·g and spins it up at 2μg/R until the contact stops slipping at t = v0/(3μg), from
 // when it rolls at 2v0/3. The polygon rolls over an edge every 2π/256 of a turn, each a small plastic

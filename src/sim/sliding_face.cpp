@@ -1,0 +1,166 @@
+// A face sliding flush on the wall (sliding_face.hpp).
+#include "sliding_face.hpp"
+
+#include <Eigen/Dense>
+#include <cmath>
+
+namespace repose::sim {
+
+namespace {
+
+// Rounds of the loaded set (a point with a negative force dropped each) are bounded by the points; rounds of
+// a starting slip's direction (each takes the direction of the slip's acceleration the last one gave) by
+// this.
+constexpr int kDirectionRounds = 50;
+
+constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+
+struct FaceSolution {
+  Eigen::VectorXd x;  // a (3), α (3), c (3), then the sticking point's tangential force (2)
+  std::vector<double> normals;
+  Vec3 acceleration(const Motion& m, const Vec3& r) const {
+    return x.segment<3>(0) + Vec3(x.segment<3>(3)).cross(r) + m.omega.cross(m.omega.cross(r));
+  }
+};
+
+// Newton–Euler's six equations, the flush face's three and, with a sticking point, its two of zero
+// tangential acceleration: linear in (a, α, c, f). Points in `loaded` carry N_i = b_i·c; sliding ones take
+// F_i = N_i·(−μ·ŝ_i, 1), the sticking one F = (f, N).
+std::optional<FaceSolution> solve_face(const ContactBody& body, const Motion& motion,
+                                       const std::vector<Vec3>& arms, double mu,
+                                       const std::vector<Vec2>& directions, const std::vector<char>& loaded,
+                                       std::size_t sticking) {
+  const std::size_t n = arms.size();
+  Vec2 centre = Vec2::Zero();
+  int count = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (loaded[i]) centre += arms[i].head<2>(), ++count;
+  if (count < 3) return std::nullopt;
+  centre /= count;
+  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), 3);
+  double extent = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!loaded[i]) continue;
+    const Vec2 d = arms[i].head<2>() - centre;
+    B.row(static_cast<Eigen::Index>(i)) << 1, d.x(), d.y();
+    extent = std::max(extent, d.norm());
+  }
+  // Collinear points (an edge) hold no face: the smallest singular value of the scaled columns.
+  Eigen::MatrixXd scaled = B;
+  scaled.rightCols<2>() /= extent;
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaled);
+  if (!(svd.singularValues()(2) > 1e-6 * svd.singularValues()(0))) return std::nullopt;
+  const bool sticks = sticking != kNone;
+  const Eigen::Index size = sticks ? 11 : 9;
+  const Vec3& w = motion.omega;
+  const double m = body.mass;
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(size, size);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(size);
+  // m·a − Σ F_i = −m·g·ẑ and I·α − Σ r_i × F_i = −C·ω − ω × I·ω.
+  A.block<3, 3>(0, 0) = m * Mat3::Identity();
+  A.block<3, 3>(3, 3) = body.inertia;
+  rhs.segment<3>(0) = Vec3(0, 0, -m * body.gravity);
+  rhs.segment<3>(3) = -body.damping * w - w.cross(body.inertia * w);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!loaded[i]) continue;
+    const Vec3 d = i == sticking ? Vec3::UnitZ() : Vec3(-mu * directions[i].x(), -mu * directions[i].y(), 1);
+    const Eigen::RowVector3d b = B.row(static_cast<Eigen::Index>(i));
+    const Vec3& r = arms[i];
+    A.block<3, 3>(0, 6) -= d * b;
+    A.block<3, 3>(3, 6) -= r.cross(d) * b;
+    // The flush face: Bᵀ·(a_z + (α × r_i)_z + (ω × (ω × r_i))_z) = 0, the normal accelerations being affine
+    // over the face.
+    A.block<3, 1>(6, 2) += b.transpose();
+    A.block<3, 1>(6, 3) += b.transpose() * r.y();
+    A.block<3, 1>(6, 4) -= b.transpose() * r.x();
+    rhs.segment<3>(6) -= b.transpose() * w.cross(w.cross(r)).z();
+  }
+  if (sticks) {
+    const Vec3& r = arms[sticking];
+    const Vec3 centripetal = w.cross(w.cross(r));
+    A(0, 9) = A(1, 10) = -1;
+    A.block<3, 1>(3, 9) = -r.cross(Vec3::UnitX());
+    A.block<3, 1>(3, 10) = -r.cross(Vec3::UnitY());
+    // (a + α × r + ω × (ω × r))_x = 0 and _y = 0.
+    A(9, 0) = 1, A(9, 4) = r.z(), A(9, 5) = -r.y(), rhs(9) = -centripetal.x();
+    A(10, 1) = 1, A(10, 5) = r.x(), A(10, 3) = -r.z(), rhs(10) = -centripetal.y();
+  }
+  const Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
+  if (!lu.isInvertible()) return std::nullopt;
+  FaceSolution s;
+  s.x = lu.solve(rhs);
+  if (!s.x.allFinite()) return std::nullopt;
+  s.normals.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    s.normals[i] = B.row(static_cast<Eigen::Index>(i)).dot(s.x.segment<3>(6));
+  return s;
+}
+
+}  // namespace
+
+std::optional<ContactForces> sliding_face(const ContactBody& body, const Motion& motion,
+                                          const std::vector<Vec3>& arms, double mu,
+                                          const std::vector<PointCondition>& conditions) {
+  const std::size_t n = arms.size();
+  if (n < 3) return std::nullopt;
+  std::size_t at_rest = kNone;
+  std::vector<Vec2> directions(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    directions[i] = conditions[i].direction;
+    if (conditions[i].rule == PointRule::sliding) continue;
+    if (conditions[i].rule != PointRule::unilateral || at_rest != kNone) return std::nullopt;
+    at_rest = i;
+  }
+  // The loaded points: all, then the one with the most negative force dropped, round by round.
+  std::vector<char> loaded(n, 1);
+  std::optional<FaceSolution> face;
+  for (std::size_t round = 0;; ++round) {
+    if (round + 3 > n) return std::nullopt;
+    const std::size_t sticking = at_rest != kNone && loaded[at_rest] ? at_rest : kNone;
+    face = solve_face(body, motion, arms, mu, directions, loaded, sticking);
+    if (!face) return std::nullopt;
+    std::size_t worst = kNone;
+    for (std::size_t i = 0; i < n; ++i)
+      if (loaded[i] && face->normals[i] < 0 && (worst == kNone || face->normals[i] < face->normals[worst]))
+        worst = i;
+    if (worst == kNone) break;
+    loaded[worst] = 0;
+  }
+  // The point at rest sticks if its force is in the cone; else it starts to slide against the acceleration of
+  // its slip, the direction found by fixed-point rounds.
+  bool slides = false;
+  if (at_rest != kNone && loaded[at_rest]) {
+    const Vec2 f = face->x.segment<2>(9);
+    if (f.norm() > mu * face->normals[at_rest]) {
+      slides = true;
+      directions[at_rest] = -f.normalized();
+      bool found = false;
+      for (int round = 0; round < kDirectionRounds && !found; ++round) {
+        face = solve_face(body, motion, arms, mu, directions, loaded, kNone);
+        if (!face || face->normals[at_rest] < 0) return std::nullopt;
+        const Vec2 slip = face->acceleration(motion, arms[at_rest]).head<2>();
+        const Vec2& s = directions[at_rest];
+        found = !(slip.norm() > 1e-12 * body.gravity) ||  // no slip acceleration: any direction holds
+                (slip.dot(s) > 0 && std::abs(s.x() * slip.y() - s.y() * slip.x()) <= 1e-12 * slip.norm());
+        if (!found) directions[at_rest] = slip.normalized();
+      }
+      if (!found) return std::nullopt;
+    }
+  }
+  ContactForces out;
+  out.acceleration = face->x.segment<3>(0);
+  out.angular_acceleration = face->x.segment<3>(3);
+  out.forces.resize(n);
+  out.modes.resize(n);
+  out.inconsistent.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double normal = loaded[i] ? face->normals[i] : 0.0;
+    const bool sticks = i == at_rest && !slides;
+    out.forces[i] = sticks ? Vec3(face->x(9), face->x(10), normal)
+                           : normal * Vec3(-mu * directions[i].x(), -mu * directions[i].y(), 1);
+    out.modes[i] = !(normal > 0) ? ContactMode::open : sticks ? ContactMode::stick : ContactMode::slide;
+  }
+  return out;
+}
+
+}  // namespace repose::sim
