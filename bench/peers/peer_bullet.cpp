@@ -16,6 +16,14 @@
 //           growing (second half of the window no faster than the first), or when Bullet puts the body to
 //           sleep, or at 20 s of simulated time (counted as "no rest").
 //
+// --toss E,MU: both engines toss drop i instead of starting it at rest on the wall: released with its lowest
+// point 4·L above the wall (Bullet: of its collision shape) with the centre-of-mass velocity and the angular
+// velocity of repose::drop_toss(seed, i) (speeds up to 1.5·sqrt(g·L) and 1.5·sqrt(g/L), the toss model of
+// docs/experiments.md). repose: restitution E and friction μ (its frictional contact phase after the
+// landing). Bullet: the body's restitution E and friction μ, the ground's 1 and 1 (Bullet multiplies the two
+// bodies' coefficients); Bullet's restitution is Newton's, equal to Stronge's E in a frictionless central
+// impact.
+//
 // One thread for everything. Time per settle is steady_clock time over the N drops; for Bullet only the
 // drop's reset, its steps and the rest test are timed, not the penetration measurement (a scan of every hull
 // vertex after every step, which Bullet itself does not need).
@@ -81,13 +89,28 @@ struct ReposeSide {
   repose::EnsembleOptions options;
 };
 
-ReposeSide prepare_repose(const repose::Particle& particle, bool full_settle) {
+// A toss for every drop (--toss E,MU), or none.
+struct TossOptions {
+  bool active = false;
+  double restitution = 0, friction = INFINITY;
+  static constexpr double kHeight = 4, kVelocity = 1.5, kSpin = 1.5;  // × L, sqrt(g·L), sqrt(g/L)
+};
+
+ReposeSide prepare_repose(const repose::Particle& particle, bool full_settle, const TossOptions& toss) {
   ReposeSide side;
   side.landscape = repose::compute_rest_landscape(particle);
   repose::StudySettings settings;  // the `repose poses` defaults: seed 1, damping ratio 0.05, decide early
   settings.density = kDensity;
   settings.params.gravity = kGravity;
   settings.decide_early = !full_settle;
+  if (toss.active) {
+    const double L = particle.length;
+    settings.params.restitution = toss.restitution;
+    settings.params.friction = toss.friction;
+    settings.params.drop_height = TossOptions::kHeight * L;
+    settings.toss.velocity_max = TossOptions::kVelocity * std::sqrt(kGravity * L);
+    settings.toss.spin_max = TossOptions::kSpin * std::sqrt(kGravity / L);
+  }
   side.study = repose::prepare_study(particle, side.landscape, settings);
   side.options = repose::ensemble_options(side.study, {0, 0}, 1);
   return side;
@@ -97,6 +120,7 @@ ReposeSide prepare_repose(const repose::Particle& particle, bool full_settle) {
 struct BulletOptions {
   bool sleep = true;   // Bullet's deactivation (default on); --bullet-no-sleep turns it off
   double damping = 0;  // repose's damping coefficient C to mirror as Bullet angular damping (0: none)
+  TossOptions toss;    // restitution and friction of the body (the ground's 1 and 1), with --toss
 };
 
 // Bullet's side: one world per shape; each drop removes the body, resets it and adds it again.
@@ -126,6 +150,12 @@ class BulletSide {
     // --bullet-damping: repose's damping torque −C·ω as Bullet angular damping, at the decay rate C/I of the
     // mean principal moment I (Bullet scales ω by (1 − d)^dt each step, so d = 1 − exp(−C/I · 1 s)).
     if (options.damping > 0) body_->setDamping(0, 1 - std::exp(-options.damping / (moments.sum() / 3)));
+    if (options.toss.active) {
+      ground_->setRestitution(1);
+      ground_->setFriction(1);
+      body_->setRestitution(options.toss.restitution);
+      body_->setFriction(std::isfinite(options.toss.friction) ? options.toss.friction : BT_LARGE_FLOAT);
+    }
     sleep_ = options.sleep;
     world_.addRigidBody(body_.get());
   }
@@ -141,7 +171,8 @@ class BulletSide {
     Vec3 down_body;                // final direction at the wall, repose's body frame
   };
 
-  Drop drop(const Quat& q, double length) {
+  // Drop from rest on the wall, or tossed (`toss`, world frame) with the lowest point `height` above it.
+  Drop drop(const Quat& q, double length, const repose::Toss& toss = {}, double height = 0) {
     Drop out;
     const auto t0 = Clock::now();
     // Orientation of Bullet's (principal) frame: world = R_q·x_body = R_q·A·x_bullet.
@@ -150,14 +181,16 @@ class BulletSide {
     // Lowest point of Bullet's collision shape (the hull grown by its margin) touching the plane.
     double lowest = INFINITY;
     for (const Vec3& p : vertices_) lowest = std::min(lowest, r.row(2).dot(p));
-    const btTransform start(basis, {0, 0, margin() - lowest});
+    const btTransform start(basis, {0, 0, height + margin() - lowest});
+    const btVector3 v(toss.velocity.x(), toss.velocity.y(), toss.velocity.z());
+    const btVector3 w(toss.spin.x(), toss.spin.y(), toss.spin.z());
     world_.removeRigidBody(body_.get());
     body_->setWorldTransform(start);
     body_->setInterpolationWorldTransform(start);
-    body_->setLinearVelocity({0, 0, 0});
-    body_->setAngularVelocity({0, 0, 0});
-    body_->setInterpolationLinearVelocity({0, 0, 0});
-    body_->setInterpolationAngularVelocity({0, 0, 0});
+    body_->setLinearVelocity(v);
+    body_->setAngularVelocity(w);
+    body_->setInterpolationLinearVelocity(v);
+    body_->setInterpolationAngularVelocity(w);
     body_->clearForces();
     body_->forceActivationState(sleep_ ? ACTIVE_TAG : DISABLE_DEACTIVATION);
     body_->setDeactivationTime(0);
@@ -258,7 +291,7 @@ struct Row {
 Row run_shape(const Shape& shape, std::uint64_t drops, std::uint64_t seed, bool full_settle, bool trace,
               BulletOptions bullet_options) {
   const repose::Particle particle = make_shape_particle(shape);
-  ReposeSide rs = prepare_repose(particle, full_settle);
+  ReposeSide rs = prepare_repose(particle, full_settle, bullet_options.toss);
   rs.options.seed = seed;
   const repose::RestPoseCatalog& catalog = rs.study.catalog;
   if (bullet_options.damping > 0) bullet_options.damping = rs.study.params.damping;
@@ -281,7 +314,11 @@ Row run_shape(const Shape& shape, std::uint64_t drops, std::uint64_t seed, bool 
   row.repose_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
 
   for (std::uint64_t i = 0; i < drops; ++i) {
-    const BulletSide::Drop d = bullet.drop(repose::drop_orientation(seed, i), particle.length);
+    const BulletSide::Drop d =
+        bullet_options.toss.active
+            ? bullet.drop(repose::drop_orientation(seed, i), particle.length,
+                          repose::drop_toss(seed, i, rs.options.toss), TossOptions::kHeight * particle.length)
+            : bullet.drop(repose::drop_orientation(seed, i), particle.length);
     row.bullet_seconds += d.seconds;
     row.bullet_mean_time += d.time / static_cast<double>(drops);
     row.bullet_depth = std::max(row.bullet_depth, d.max_depth);
@@ -344,13 +381,15 @@ void print_histogram(const Row& row) {
 int usage(const char* argv0, bool help = false) {
   std::fprintf(
       help ? stdout : stderr,
-      "usage: %s [--drops N] [--seed S] [--only NAME[,NAME...]] [--full-settle]\n"
+      "usage: %s [--drops N] [--seed S] [--only NAME[,NAME...]] [--full-settle] [--toss E,MU]\n"
       "          [--bullet-no-sleep] [--bullet-damping] [--trace] [--no-histograms]\n"
       "  --drops N      drops per shape (default: per shape, a run of a few minutes)\n"
       "  --seed S       drop i starts at repose::drop_orientation(S, i) (default 1)\n"
       "  --only NAMES   comma-separated row names (cube, box123, tetrahedron, cylinder64, ellipsoid2000,\n"
       "                 grain100, grain1000, grain10000)\n"
       "  --full-settle  time repose to rest (repose poses --full-settle) instead of its default\n"
+      "  --toss E,MU    toss every drop from 4 L up (random speeds, docs/experiments.md's toss) with\n"
+      "                 restitution E and friction MU (inf: no slip) in both engines\n"
       "  --bullet-no-sleep  switch off Bullet's deactivation (default: on, Bullet's default)\n"
       "  --bullet-damping   give Bullet angular damping at repose's rate C/I (default: none, Bullet's "
       "default)\n"
@@ -381,6 +420,17 @@ int main(int argc, char** argv) {
       only += ',';
     } else if (a == "--full-settle") {
       full_settle = true;
+    } else if (a == "--toss") {
+      const std::string v = value();
+      const std::size_t comma = v.find(',');
+      if (comma == std::string::npos) return usage(argv[0]);
+      bullet_options.toss.restitution = std::strtod(v.c_str(), nullptr);
+      const std::string mu = v.substr(comma + 1);
+      bullet_options.toss.friction = mu == "inf" ? INFINITY : std::strtod(mu.c_str(), nullptr);
+      bullet_options.toss.active = true;
+      if (!(bullet_options.toss.restitution >= 0 && bullet_options.toss.restitution <= 1) ||
+          !(bullet_options.toss.friction >= 0))
+        return usage(argv[0]);
     } else if (a == "--bullet-no-sleep") {
       bullet_options.sleep = false;
     } else if (a == "--bullet-damping") {
@@ -407,10 +457,14 @@ int main(int argc, char** argv) {
   std::printf(
       "Bullet %d, btScalar %s precision, fixed step %g s, margin default, deactivation %s, angular damping "
       "%s; "
-      "repose %s, seed %llu\n\n",
+      "repose %s, seed %llu%s\n\n",
       btGetVersion(), sizeof(btScalar) == 8 ? "double" : "single", kDt, bullet_options.sleep ? "on" : "off",
       bullet_options.damping > 0 ? "repose's rate" : "none",
-      full_settle ? "--full-settle" : "poses defaults (decide early)", static_cast<unsigned long long>(seed));
+      full_settle ? "--full-settle" : "poses defaults (decide early)", static_cast<unsigned long long>(seed),
+      bullet_options.toss.active ? (", tossed: E " + std::to_string(bullet_options.toss.restitution) +
+                                    ", mu " + std::to_string(bullet_options.toss.friction))
+                                       .c_str()
+                                 : "");
   std::vector<Row> rows;
   try {
     for (const auto& [shape, default_drops] : shapes) {

@@ -122,8 +122,8 @@ const std::array<ParamInfo, 18> kTable = {{
      .range = {.min = 0, .max = 1, .min_open = false, .max_open = false, .text = "in [0, 1]"},
      .uses = kEverywhere | study_optional,  // older files: 0, no rebound
      .cli = CliGroup::impact,
-     .help = "Impacts while airborne: Stronge's energetic coefficient of restitution E in [0, 1] (default "
-             "{default}: no rebound, the paper's touch)"},
+     .help = "Impacts: Stronge's energetic coefficient of restitution E in [0, 1] (default {default}: no "
+             "rebound, the paper's touch)"},
     {.name = "friction",
      .unit = "1",
      .member = &SettleParams::friction,
@@ -134,8 +134,8 @@ const std::array<ParamInfo, 18> kTable = {{
                .text = "a number >= 0 or inf (no slip)"},
      .uses = kEverywhere | study_optional,  // older files: no slip
      .cli = CliGroup::impact,
-     .help = "Impacts while airborne: Coulomb's friction coefficient mu >= 0, or inf: no slip (default "
-             "{default})"},
+     .help = "Coulomb's friction coefficient mu >= 0 at impacts and, after the landing, in the frictional "
+             "contact phase (slip, stick and lift-off); inf: no slip, the paper's rotation (default {default})"},
     {.name = "max_time",
      .unit = "time",
      .member = &SettleParams::max_time,
