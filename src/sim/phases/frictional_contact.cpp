@@ -21,6 +21,8 @@ constexpr int kEventSamples = 8;
 // Segments shorter than this (× τ) in a row, kStalls of them, are a stall (FrictionalContact::step).
 constexpr double kStallTime = 1e-12;
 constexpr int kStalls = 8;
+// Balances tipped off in one phase (each leaves a face; a bound, never reached in the tests).
+constexpr int kTipOffs = 8;
 
 Motion motion_of(const BodyState& s) { return {s.velocity, s.omega}; }
 }  // namespace
@@ -177,6 +179,12 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
         velocity_ = omega_ = Vec3::Zero();
         return rest;
       }
+      // Still, on a face the paper's test calls unstable: balanced on its boundary to round-off (a designed
+      // die's face whose margin is 0 to 1e-12·L). Left by the paper's rule for an edge balance.
+      if (tip_offs_ < kTipOffs && tip_off_balance(support)) {
+        ++tip_offs_;
+        return begin_segment();
+      }
     }
   }
   const double first = started_ ? integrator_.proposed_step() : run.tol.first_step;
@@ -184,6 +192,46 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
   integrator_.start({run.com, velocity_, run.q, omega_}, ledger_, run.t, first,
                     [this](const BodyState& s) { return rates(s); });
   return std::nullopt;
+}
+
+// A still body whose face under the centre of mass is unstable by the paper's test balances on the face's
+// boundary: it is turned about the boundary edge nearest the centre of mass (on the wall) until the centre of
+// mass is balance_offset beyond it, at rest, from where gravity tips it off (the rule the paper's phase
+// applies to an edge balance, contact_support.cpp). True if it was turned.
+bool FrictionalContact::tip_off_balance(const Support& support) {
+  Run& run = run_;
+  const int f = face_under_com(run, support);
+  if (f < 0) return false;
+  const HullFace& face = run.particle.hull.faces[static_cast<std::size_t>(f)];
+  std::vector<Vec3> loop;
+  Vec2 centre = Vec2::Zero();
+  for (int k : face.loop) {
+    loop.push_back(run.com + run.q * run.particle.hull.vertices[static_cast<std::size_t>(k)]);
+    centre += loop.back().head<2>() / static_cast<double>(face.loop.size());
+  }
+  // The edge the centre of mass is farthest beyond (or least inside), its outward normal in the wall's plane.
+  const Vec2 g = run.com.head<2>();
+  double lean = -INFINITY;
+  Vec3 pivot = Vec3::Zero();
+  Vec2 outward = Vec2::Zero();
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const Vec2 a = loop[i].head<2>(), b = loop[(i + 1) % loop.size()].head<2>();
+    Vec2 n(b.y() - a.y(), a.x() - b.x());
+    if (!(n.norm() > 0)) continue;
+    n.normalize();
+    if (n.dot(centre - a) > 0) n = -n;
+    if ((g - a).dot(n) > lean) lean = (g - a).dot(n), pivot = loop[i], outward = n;
+  }
+  if (!std::isfinite(lean)) return false;
+  // A turn by α about ẑ × n moves the centre of mass outward: lean(α) = d·sin(α + atan2(lean, h)).
+  const double height = run.com.z() - pivot.z(), d = std::hypot(height, lean);
+  const double alpha = std::asin(std::min(1.0, run.tol.balance_offset / d)) - std::atan2(lean, height);
+  const Vec3 axis = Vec3::UnitZ().cross(Vec3(outward.x(), outward.y(), 0));
+  const Quat turn(Eigen::AngleAxisd(alpha, axis));
+  run.q = (turn * run.q).normalized();
+  run.com = pivot + turn * (run.com - pivot);
+  velocity_ = omega_ = Vec3::Zero();
+  return true;
 }
 
 ContactForces FrictionalContact::forces_at(const BodyState& s) const {

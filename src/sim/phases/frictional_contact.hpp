@@ -51,6 +51,7 @@ class FrictionalContact {
   bool capture_returning_points();
   bool resolve_painleve();
   void hold_sticking_points();
+  bool tip_off_balance(const Support& support);
   Eigen::VectorXd stopping_impulses(const std::vector<Vec3>& arms) const;
   BodyRates rates(const BodyState& s) const;
   ContactForces forces_at(const BodyState& s) const;  // at the segment's points, by their rules
@@ -75,6 +76,7 @@ class FrictionalContact {
   double segment_start_ = 0;
   int stalls_ = 0;     // segments in a row that ended at once
   bool hold_ = false;  // after a stall: every point taken as at rest for one segment
+  int tip_offs_ = 0;   // balances tipped off
 };
 
 }  // namespace repose::sim

@@ -8,7 +8,7 @@
 
 namespace repose::sim {
 
-std::optional<RestPose> flush_rest(Run& run, const Support& support) {
+int face_under_com(const Run& run, const Support& support) {
   const Particle& particle = run.particle;
   const Quat& q = run.q;
   const auto world_vertex = [&](int k) -> Vec3 {
@@ -30,6 +30,14 @@ std::optional<RestPose> flush_rest(Run& run, const Support& support) {
       }
     }
   }
+  return best;
+}
+
+std::optional<RestPose> flush_rest(Run& run, const Support& support) {
+  const Particle& particle = run.particle;
+  const Quat& q = run.q;
+  const Vec3 down(0, 0, -1);
+  const int best = face_under_com(run, support);
   if (best < 0 || particle.face_stability_margin[static_cast<std::size_t>(best)] <= 0) return std::nullopt;
 
   // Rotate the face flush about the support point, then lift or lower it onto the wall exactly.

@@ -17,6 +17,10 @@ struct RestPose {
   std::vector<Vec3> points;  ///< world coordinates of the face's vertices, on the wall
 };
 
+/// The hull face whose plane the vertical through the centre of mass meets first from below (of those facing
+/// the wall, the one facing it most), the pose taken about `support`; −1 if none.
+int face_under_com(const Run& run, const Support& support);
+
 /// Finds the hull face under the centre of mass; if it is a statically stable face, turns the run's pose
 /// about the support point so that the face is exactly flush on the wall, and returns the rest. Nothing
 /// changes otherwise.
