@@ -77,7 +77,8 @@ json run_json(const SettleRecording& run) {
     samples.push_back(last);
   }
   json t = json::array(), q = json::array(), com = json::array(), omega = json::array(),
-       contact = json::array(), kinetic = json::array(), potential = json::array(), contacts = json::array();
+       contact = json::array(), kinetic = json::array(), potential = json::array(), contacts = json::array(),
+       sticking = json::array(), sliding = json::array();
   const double eps = run.params.contact_threshold * p.length;
   for (const Sample& s : samples) {
     t.push_back(s.t);
@@ -89,6 +90,8 @@ json run_json(const SettleRecording& run) {
     kinetic.push_back(rounded(s.kinetic_energy));
     potential.push_back(rounded(s.potential_energy));
     contacts.push_back(hull_vertices_near_wall(p, s.orientation, s.com, eps));
+    sticking.push_back(s.sticking);  // the frictional contact phase's points by mode (0 elsewhere)
+    sliding.push_back(s.sliding);
   }
   return {{"title", run.title.empty() ? p.name : run.title},
           {"shape", shape_json(p)},
@@ -101,7 +104,9 @@ json run_json(const SettleRecording& run) {
             {"contact", contact},
             {"kinetic", kinetic},
             {"potential", potential},
-            {"contacts", contacts}}}};
+            {"contacts", contacts},
+            {"sticking", sticking},
+            {"sliding", sliding}}}};
 }
 
 json contact_names() {

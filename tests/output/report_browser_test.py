@@ -113,6 +113,22 @@ def test_settle_report_plays_the_run(browser):
     assert [e for e in browser.get_log("browser") if e["level"] == "SEVERE"] == []
 
 
+def test_settle_report_shows_the_frictional_modes(browser):
+    # A cube thrown sideways onto its face with mu 0.3 slides to a stop (issue 34): the player's badge counts
+    # the sliding points, a fourth plot shows the points by mode, the summary the friction's work.
+    path = make("settle-friction.html", "settle", "box:x=1,y=1,z=1", "--velocity", "1.5,0,0", "--friction", "0.3",
+                "--html", "settle-friction.html")
+    open_report(browser, path)
+    assert_drawn(browser, path, "settle-friction.png")
+    move_slider(browser, "input.time-slider", Keys.RIGHT)  # the first frame is before the first step
+    assert browser.find_element(By.CSS_SELECTOR, ".badge").text.endswith("0 sticking, 4 sliding")
+    assert len(browser.find_elements(By.CSS_SELECTOR, ".uplot")) == 4
+    text = browser.execute_script("return document.body.innerText")
+    for label in ("points on the wall by mode", "friction after the landing", "Painlevé"):
+        assert label in text, f"{path}: no '{label}' in the page"
+    assert [e for e in browser.get_log("browser") if e["level"] == "SEVERE"] == []
+
+
 def test_poses_report_shows_every_pose(browser):
     path = make("poses.html", "poses", "box:x=1,y=2,z=3", "-n", "300", "--html", "poses.html")
     open_report(browser, path)

@@ -31,7 +31,8 @@ function buildPlayer(THREE, run, contactNames, parent) {
     stage.render();
     clock.textContent = "t = " + fmt(f.t[i], 5);
     const c = f.contact[i];
-    badge.textContent = contactNames[c] + (f.contacts[i].length ? ` · ${f.contacts[i].length} within ε` : "");
+    const modes = f.sticking && f.sticking[i] + f.sliding[i] > 0 ? ` · ${f.sticking[i]} sticking, ${f.sliding[i]} sliding` : "";
+    badge.textContent = contactNames[c] + (f.contacts[i].length ? ` · ${f.contacts[i].length} within ε` : "") + modes;
     badge.style.background = CONTACT_COLOURS[c];
     cursor.time = f.t[i];
     for (const u of charts) u.redraw(false);
@@ -119,6 +120,22 @@ function buildPlayer(THREE, run, contactNames, parent) {
         cursor,
       }),
     );
+    // With finite friction: the points on the wall by Coulomb's mode (the frictional contact phase).
+    if (f.sticking && f.sticking.some((v, i) => v + f.sliding[i] > 0))
+      charts.push(
+        lineChart(box(), {
+          title: "points on the wall by mode (friction after the landing)",
+          xLabel: tLabel,
+          yLabel: "points",
+          x: f.t,
+          series: [
+            { label: "sticking", values: f.sticking, colour: "#1f77b4" },
+            { label: "sliding", values: f.sliding, colour: "#ff7f0e" },
+          ],
+          steps: true,
+          cursor,
+        }),
+      );
   }
   if (n > 0) show(0);
   return { stage, show, slider };
@@ -139,6 +156,8 @@ function summaryTable(summary) {
   rows.push(["largest penetration", `${fmt(summary.max_penetration)} ${u.length}`]);
   rows.push(["energy", `${fmt(summary.energy.start, 6)} → ${fmt(summary.energy.end, 6)} ${u.energy}`]);
   if (summary.impacts.length) rows.push(["impacts", `${summary.impacts.length}, ${summary.bounces} followed by a flight`]);
+  if (summary.energy.friction_work !== undefined && summary.parameters.friction !== null)
+    rows.push(["friction after the landing", `work ${fmt(summary.energy.friction_work, 6)} ${u.energy}, damping's ${fmt(summary.energy.damping_work, 6)} ${u.energy}, impacts' losses ${fmt(summary.energy.impact_losses, 6)} ${u.energy}; slid ${fmt(summary.sliding_distance, 6)} ${u.length}; ${summary.painleve} Painlevé impacts`]);
   rows.push([`phases (${u.time})`, summary.phases.map((p) => `${p.contact} [${fmt(p.t0)}, ${fmt(p.t1)}]`).join(" · ")]);
   const p = summary.parameters;
   rows.push(["parameters", `g = ${fmt(p.gravity)} ${u.length}/${u.time}², damping C = ${fmt(p.damping)} ${u.damping}, ${p.integrator} integrator, restitution ${fmt(p.restitution)}, friction ${p.friction === null ? "no slip" : fmt(p.friction)}`]);
