@@ -316,17 +316,59 @@ double FrictionalContact::locate_event(double a, double b) {
     }
     return false;
   };
+  // The vertices' heights and vertical velocities at an instant: a vertex that dips below the wall and comes
+  // back between two samples (its height falling at the first, rising at the second) is found by the minimum
+  // of its cubic Hermite interpolant, checked on the dense output.
+  const std::size_t nv = verts.size();
+  std::vector<double> h0(nv), w0(nv), h1(nv), w1(nv);
+  const auto sample = [&](double t, std::vector<double>& h, std::vector<double>& w) {
+    const BodyState s = integrator_.state_at(t);
+    const Mat3 R = s.q.toRotationMatrix();
+    for (std::size_t k = 0; k < nv; ++k) {
+      const Vec3 r = R * verts[k];
+      h[k] = s.com.z() + r.z();
+      w[k] = s.velocity.z() + s.omega.x() * r.y() - s.omega.y() * r.x();
+    }
+  };
+  const auto dip = [&](double t0, double t1) {
+    double first = INFINITY;
+    const double span = t1 - t0;
+    for (std::size_t k = 0; k < nv; ++k) {
+      const double level = on[k] ? sinking : 0.0;
+      const double m0 = w0[k] * span, m1 = w1[k] * span;
+      if (!(m0 < 0 && m1 > 0) || std::min(h0[k], h1[k]) - level > -m0 + m1) continue;
+      // p(s) = c0 + c1·s + c2·s² + c3·s³ on [0, 1]; p' goes from m0 < 0 to m1 > 0: its root, bisected.
+      const double c0 = h0[k], c1 = m0, c2 = -3 * h0[k] - 2 * m0 + 3 * h1[k] - m1,
+                   c3 = 2 * h0[k] + m0 - 2 * h1[k] + m1;
+      double lo = 0, hi = 1;
+      for (int i = 0; i < 60; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (c1 + mid * (2 * c2 + 3 * c3 * mid) < 0 ? lo : hi) = mid;
+      }
+      const double sm = 0.5 * (lo + hi);
+      if (c0 + sm * (c1 + sm * (c2 + c3 * sm)) < level) first = std::min(first, t0 + sm * span);
+    }
+    return first;
+  };
   EventSearch search;
   search.resolution = (b - a) * kEventResolution;
   double prev = a;
+  sample(a, h0, w0);
   for (int j = 1; j <= kEventSamples; ++j) {
     const double t = j == kEventSamples ? b : a + (b - a) * j / kEventSamples;
-    const bool touch = touches(t), stop = slip_stops(t);
+    sample(t, h1, w1);
+    bool touch = touches(t);
+    double upper = t;
+    if (const double d = dip(prev, t); !touch && d < t && touches(d)) {
+      touch = true;
+      upper = d;
+    }
+    const bool stop = slip_stops(t);
     if (touch || stop) {
       double when = INFINITY;
       // A touch at the bracket's lower end (nothing below the wall yet), a stop at its upper end (stopped).
       if (touch) {
-        const Located l = locate(prev, t, search, touches, monotone);
+        const Located l = locate(prev, upper, search, touches, monotone);
         if (l.found()) when = l.lo;
       }
       if (stop) {
@@ -335,6 +377,8 @@ double FrictionalContact::locate_event(double a, double b) {
       }
       if (std::isfinite(when)) return std::max(when, std::nextafter(a, INFINITY));
     }
+    std::swap(h0, h1);
+    std::swap(w0, w1);
     prev = t;
   }
   return INFINITY;
