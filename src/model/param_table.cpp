@@ -134,8 +134,9 @@ const std::array<ParamInfo, 18> kTable = {{
                .text = "a number >= 0 or inf (no slip)"},
      .uses = kEverywhere | study_optional,  // older files: no slip
      .cli = CliGroup::impact,
-     .help = "Coulomb's friction coefficient mu >= 0 at impacts and, after the landing, in the frictional "
-             "contact phase (slip, stick and lift-off); inf: no slip, the paper's rotation (default {default})"},
+     .help =
+         "Coulomb's friction coefficient mu >= 0 at impacts and, after the landing, in the frictional "
+         "contact phase (slip, stick and lift-off); inf: no slip, the paper's rotation (default {default})"},
     {.name = "max_time",
      .unit = "time",
      .member = &SettleParams::max_time,
