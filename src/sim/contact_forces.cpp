@@ -39,7 +39,15 @@ ContactForces contact_forces(const ContactBody& body, const Motion& motion, cons
     problem.offsets[i] = w.cross(w.cross(arms[i]));  // centripetal
     problem.scale = std::max(problem.scale, point_value(problem, i, lin, ang).norm());
   }
-  const ContactSolution s = solve_contacts(problem, lin, ang, conditions);
+  ContactSolution s = solve_contacts(problem, lin, ang, conditions);
+  // No solution reached (Gauss–Seidel diverged and Lemke's method ended on a ray): no contact force, and
+  // every sliding point driven into the wall is Painlevé's inconsistent case (below), resolved by the phase.
+  const bool finite = s.solved;
+  if (!finite) {
+    s.reactions.assign(n, Vec3::Zero());
+    s.lin = lin;
+    s.ang = ang;
+  }
   ContactForces out;
   out.forces = s.reactions;
   out.acceleration = s.lin;
@@ -57,7 +65,8 @@ ContactForces contact_forces(const ContactBody& body, const Motion& motion, cons
     // Painlevé: a sliding point driven into the wall that no normal force can hold (contact_problem.hpp).
     if (conditions[i].rule == PointRule::sliding && !pressed && value.z() < -tiny) {
       const Mat3 W = delassus_block(problem.mass, problem.inverse_inertia, arms[i]);
-      out.inconsistent[i] = W(2, 2) - friction * W.block<1, 2>(2, 0).dot(conditions[i].direction) <= 0;
+      out.inconsistent[i] =
+          !finite || W(2, 2) - friction * W.block<1, 2>(2, 0).dot(conditions[i].direction) <= 0;
     }
   }
   return out;

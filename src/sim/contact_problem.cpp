@@ -4,7 +4,10 @@
 #include <algorithm>
 #include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
+#include <numbers>
 #include <optional>
+
+#include "lemke.hpp"
 
 namespace repose::sim {
 
@@ -15,9 +18,22 @@ namespace {
 constexpr int kMaxSweeps = 5000;
 // A sweep that changes no point's value by more than this fraction of the scale has converged.
 constexpr double kConverged = 1e-14;
+// Gauss–Seidel has diverged once a point's value exceeds this multiple of the scale (with sliding friction
+// and μ above about 1 the sweeps need not contract).
+constexpr double kDiverged = 1e12;
+// The pivoting fallback's friction cone at points at rest: a pyramid of this many edges (the inscribed
+// polygon's force falls short of the cone by at most 1 − cos(π/12) = 3.4 %).
+constexpr int kConeEdges = 12;
 
 // What a sweep met: sliding points with no consistent normal reaction, points whose sliding direction was not
 // found.
+// [r]×, the matrix of r × ·.
+Mat3 skew(const Vec3& r) {
+  Mat3 x;
+  x << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
+  return x;
+}
+
 struct Counts {
   int painleve = 0;
   int unresolved = 0;
@@ -120,15 +136,82 @@ Vec3 local_reaction(const Mat3& W, const Vec3& f, double mu, const PointConditio
 }  // namespace
 
 Mat3 delassus_block(double mass, const Mat3& inverse_inertia, const Vec3& r) {
-  Mat3 rx;
-  rx << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
-  return Mat3::Identity() / mass - rx * inverse_inertia * rx;
+  return Mat3::Identity() / mass - skew(r) * inverse_inertia * skew(r);
 }
 
 Vec3 point_value(const ContactProblem& p, std::size_t i, const Vec3& lin, const Vec3& ang) {
   Vec3 x = lin + ang.cross(p.arms[i]);
   if (!p.offsets.empty()) x += p.offsets[i];
   return x;
+}
+
+// The problem as one LCP, solved by Lemke's method where Gauss–Seidel does not converge (Stewart & Trinkle
+// 1996's formulation, at the level of the values x): a sliding point carries λ ≥ 0 along (−μ·ŝ, 1),
+// complementary to its x_n; a point at rest carries λ ≥ 0 and β_k ≥ 0 along the pyramid's edges e_k, with
+// its slip speed γ ≥ 0: x_n ⊥ λ, e_k·x_t + γ ⊥ β_k, μ·λ − Σβ_k ⊥ γ (it sticks, or slides with the pyramid's
+// maximal dissipation). A given normal reaction is not part of it. Empty where Lemke's method ends on a ray:
+// no solution (Painlevé's inconsistent case) or one it cannot reach (several solutions).
+std::optional<ContactSolution> solve_contacts_by_pivoting(const ContactProblem& p, const Vec3& lin,
+                                                          const Vec3& ang,
+                                                          const std::vector<PointCondition>& conditions) {
+  const std::size_t n = p.arms.size();
+  // Each point's force directions (the columns G_i: F_i = G_i·z_i) and its first unknown's index.
+  std::vector<Eigen::MatrixXd> G(n);
+  std::vector<Eigen::Index> first(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const PointCondition& c = conditions[i];
+    if (c.rule == PointRule::given_normal) return std::nullopt;
+    if (c.rule == PointRule::sliding) {
+      G[i] = Vec3(-p.friction * c.direction.x(), -p.friction * c.direction.y(), 1);
+    } else {
+      G[i] = Eigen::MatrixXd::Zero(3, 1 + kConeEdges);
+      G[i](2, 0) = 1;
+      for (int k = 0; k < kConeEdges; ++k) {
+        const double angle = 2 * std::numbers::pi * k / kConeEdges;
+        G[i](0, 1 + k) = std::cos(angle), G[i](1, 1 + k) = std::sin(angle);
+      }
+    }
+    // A point at rest has one more unknown, γ.
+    first[i + 1] = first[i] + G[i].cols() + (c.rule == PointRule::sliding ? 0 : 1);
+  }
+  const Eigen::Index size = first[n];
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(size, size);
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(size);
+  for (std::size_t i = 0; i < n; ++i) {
+    // The rows of point i: its x_n, then (at rest) e_k·x_t; Gᵢᵀ·x_i with the first row the normal alone (a
+    // sliding direction is not a row).
+    const Eigen::Index cols_i = G[i].cols();
+    Eigen::MatrixXd rows_i = G[i].transpose();
+    rows_i.row(0) = Eigen::RowVector3d(0, 0, 1);
+    q.segment(first[i], cols_i) = rows_i * point_value(p, i, lin, ang);
+    for (std::size_t j = 0; j < n; ++j) {
+      // W_ij: a unit reaction at j changes the value at i by W_ij·R (delassus_block is W_ii).
+      const Mat3 W = Mat3::Identity() / p.mass - skew(p.arms[i]) * p.inverse_inertia * skew(p.arms[j]);
+      M.block(first[i], first[j], cols_i, G[j].cols()) = rows_i * W * G[j];
+    }
+    if (conditions[i].rule == PointRule::sliding) continue;
+    // The cone's rows and γ's column.
+    const Eigen::Index gamma = first[i] + cols_i;
+    M.block(first[i] + 1, gamma, kConeEdges, 1).setOnes();
+    M(gamma, first[i]) = p.friction;
+    M.block(gamma, first[i] + 1, 1, kConeEdges).setConstant(-1);
+  }
+  // Lemke's method ends within a few pivots per unknown; the bound keeps a degenerate problem finite.
+  const std::optional<Eigen::VectorXd> z = solve_lcp(M, q, static_cast<int>(50 * size + 100));
+  if (!z || !z->allFinite()) return std::nullopt;
+  ContactSolution s;
+  s.reactions.resize(n);
+  s.lin = lin;
+  s.ang = ang;
+  for (std::size_t i = 0; i < n; ++i) {
+    s.reactions[i] = G[i] * z->segment(first[i], G[i].cols());
+    // Within the cone to round-off (the pyramid is inside it): the round-off taken off.
+    const double cone = p.friction * s.reactions[i].z(), tangential = s.reactions[i].head<2>().norm();
+    if (tangential > cone) s.reactions[i].head<2>() *= tangential > 0 ? cone / tangential : 0.0;
+    s.lin += s.reactions[i] / p.mass;
+    s.ang += p.inverse_inertia * p.arms[i].cross(s.reactions[i]);
+  }
+  return s;
 }
 
 ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const Vec3& ang,
@@ -152,16 +235,26 @@ ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const V
       s.ang += p.inverse_inertia * p.arms[i].cross(delta);
       s.reactions[i] = next;
     }
-    double change = 0;
-    for (std::size_t i = 0; i < n; ++i)
-      change = std::max(change, (point_value(p, i, s.lin, s.ang) - at_start[i]).norm());
+    double change = 0, largest = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3 x = point_value(p, i, s.lin, s.ang);
+      change = std::max(change, (x - at_start[i]).norm());
+      largest = std::max(largest, x.norm());
+    }
     s.painleve = counts.painleve;
     if (change <= kConverged * p.scale) {
       s.converged = counts.unresolved == 0;
+      // A sliding point with no consistent force on its own may have one with the others (the whole LCP
+      // decides Painlevé's case).
+      if (s.painleve > 0)
+        if (auto pivoted = solve_contacts_by_pivoting(p, lin, ang, conditions)) return *pivoted;
       return s;
     }
+    if (!(largest <= kDiverged * p.scale)) break;  // diverging (or not finite)
   }
+  if (auto pivoted = solve_contacts_by_pivoting(p, lin, ang, conditions)) return *pivoted;
   s.converged = false;
+  s.solved = false;
   return s;
 }
 

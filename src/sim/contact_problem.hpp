@@ -14,9 +14,11 @@
 //   given_normal  R_n is given; R_t sticks if the cone μ·R_n allows, else slides (restitution).
 // Solved by block Gauss–Seidel over the points, each block exactly, until a sweep changes no point's value by
 // more than 1e-14 of the problem's scale: the values are then determined even where the reactions are not
-// (a face's four corners share three constraints).
+// (a face's four corners share three constraints). With sliding friction and μ above about 1 the sweeps need
+// not contract; where they diverge or do not converge, the problem is solved as one LCP by Lemke's method.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "repose/geometry/types.hpp"
@@ -46,12 +48,23 @@ struct ContactSolution {
   /// Within the sweep bound, and every sliding direction found (where one was not, not met in the tests, the
   /// point took the frictionless plastic reaction).
   bool converged = true;
+  /// False where neither Gauss–Seidel nor Lemke's method reached a solution (the reactions are then not
+  /// usable: Painlevé's case or a problem with no solution).
+  bool solved = true;
   int painleve = 0;  ///< sliding points with no consistent normal reaction
 };
 
 /// The reactions from the body's state (lin, ang) without them.
 ContactSolution solve_contacts(const ContactProblem& problem, const Vec3& lin, const Vec3& ang,
                                const std::vector<PointCondition>& conditions);
+
+/// The same as one linear complementarity problem solved by Lemke's method (solve_contacts' fallback where
+/// Gauss–Seidel does not converge): a point at rest has a friction pyramid of 12 edges (its force falls short
+/// of the cone by at most 3.4 %, exact along x and y). Empty on a given normal reaction, or where the problem
+/// has no solution Lemke's method reaches (Painlevé's cases).
+std::optional<ContactSolution> solve_contacts_by_pivoting(const ContactProblem& problem, const Vec3& lin,
+                                                          const Vec3& ang,
+                                                          const std::vector<PointCondition>& conditions);
 
 /// The Delassus block of a point r from the centre of mass: a unit reaction at r changes that point's
 /// velocity (or acceleration) by K·R, K = 1/m − [r]× I⁻¹ [r]×.
