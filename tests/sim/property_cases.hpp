@@ -325,6 +325,23 @@ inline std::string closed_form_rest_problem(const std::string& spec, const Settl
 }
 
 /// Runs the case and checks every property (see the test's header comment).
+/// A hull face's smallest width: over its edges, the largest distance of its points from the edge's line.
+inline double face_width(const Particle& p, int face) {
+  const auto& loop = p.hull.faces[static_cast<std::size_t>(face)].loop;
+  double width = INFINITY;
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const Vec3 a = p.hull.vertices[static_cast<std::size_t>(loop[i])];
+    const Vec3 e = (p.hull.vertices[static_cast<std::size_t>(loop[(i + 1) % loop.size()])] - a).normalized();
+    double farthest = 0;
+    for (int k : loop) {
+      const Vec3 d = p.hull.vertices[static_cast<std::size_t>(k)] - a;
+      farthest = std::max(farthest, (d - d.dot(e) * e).norm());
+    }
+    width = std::min(width, farthest);
+  }
+  return width;
+}
+
 inline Outcome run_case(const Case& c, const Particle& p) {
   Outcome o;
   const double L = p.length;
@@ -440,7 +457,12 @@ inline Outcome run_case(const Case& c, const Particle& p) {
     // room for the gyroscopic term, which the bound leaves out.
     const double step = r.time - t_prev;
     const double alpha = p.mass.mass * kG * L / p.mass.principal_moments.minCoeff();
-    const double reach = 1.5 * (omega_prev * step + 0.5 * alpha * step * step) + 1e-6;
+    // The frictional phase (finite μ) lays the face flush once all its points are within its band of the
+    // wall, 1e-7·L (kFrictionalBand, docs/method.md): a turn of at most band / w, w the face's smallest width.
+    double flush = 0;
+    if (std::isfinite(prm.friction) && r.rest_face >= 0 && r.rest_face < static_cast<int>(p.hull.faces.size()))
+      flush = 1e-7 * L / face_width(p, r.rest_face);
+    const double reach = 1.5 * (omega_prev * step + 0.5 * alpha * step * step + flush) + 1e-6;
     if (o.rest_snap > reach)
       fail("rest pose is a " + num17(o.rest_snap) +
            " rad rotation from the last moving state (one step turns ≤ " + num17(reach) +

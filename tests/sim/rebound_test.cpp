@@ -50,11 +50,15 @@ TEST(Rebound, ABallBouncesToTheGeometricSeriesOfApexesAndStopsAtItsSum) {
   const double t0 = std::sqrt(2 * h / kG), v0 = std::sqrt(2 * kG * h);
   ASSERT_GT(r.impacts.size(), 10u);
   // With finite friction the contact phase after the hand-over is the frictional one: its touches slower
-  // than sqrt(2·g·1e-7·L) (they cannot leave its band again) are plastic and end the series there.
+  // than sqrt(2·g·1e-7·L) (they cannot leave its band again) are plastic and end the series there. The ball
+  // is then balanced on its vertex straight below its centre (an unstable balance): it topples from
+  // round-off much later and strikes its facets, which is not part of the series.
   const double separation = std::sqrt(2 * kG * 1e-7 * ball.length);
-  const std::size_t series = r.impacts.size() - 1;
-  EXPECT_LT(-r.impacts.back().normal_speed_before, separation);
-  EXPECT_NEAR(r.impacts.back().normal_speed_after, 0, 1e-12 * v0_of(h));
+  std::size_t series = 0;
+  while (series < r.impacts.size() && std::abs(r.impacts[series].normal_speed_after) > 1e-12 * v0_of(h))
+    ++series;
+  ASSERT_LT(series, r.impacts.size()) << "no plastic capture ends the series";
+  EXPECT_LT(-r.impacts[series].normal_speed_before, separation);
   int rebounds = 0;
   for (const ImpactRecord& i : r.impacts) rebounds += i.rebound;
   EXPECT_EQ(r.bounces, rebounds);
@@ -69,14 +73,14 @@ TEST(Rebound, ABallBouncesToTheGeometricSeriesOfApexesAndStopsAtItsSum) {
     e_n *= e;
     t_expected += 2 * t0 * e_n;
   }
-  // The bouncing ends where the last flight does (then the ball rocks on its facets, undamped, in the
-  // paper's rotation).
-  double last_flight = 0;
+  // The bouncing ends at the capture, where a flight ends, at the series' sum.
+  bool flight_ends_there = false;
+  const double sum = t0 * (1 + e) / (1 - e), capture = r.impacts[series].t;
   for (const Phase& ph : r.phases)
-    if (ph.contact == ContactType::flight) last_flight = ph.t1;
-  const double sum = t0 * (1 + e) / (1 - e);
-  EXPECT_NEAR(last_flight, sum, 1e-4 * sum);
-  EXPECT_NEAR(r.impacts.back().t, last_flight, 1e-12 * sum);
+    flight_ends_there = flight_ends_there ||
+                        (ph.contact == ContactType::flight && std::abs(ph.t1 - capture) <= 1e-12 * sum);
+  EXPECT_TRUE(flight_ends_there);
+  EXPECT_NEAR(capture, sum, 1e-4 * sum);
   EXPECT_LE(r.max_penetration, 1e-9 * ball.length);
 }
 

@@ -175,13 +175,22 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
         still.angular_acceleration.norm() * run.tol.length <= run.tol.still_acceleration) {
       const Vec3 body_point = verts[static_cast<std::size_t>(active_[0])];
       const Support support{run.com + run.q * body_point, body_point, false, Vec3::UnitX()};
-      if (auto rest = flush_rest(run, support)) {
+      // A rest lays the face under the centre of mass flush, if it is on the wall (all its points within the
+      // band). Still on fewer points of it, the body balances on an edge (a rocking grain at the turning
+      // point of its swing with its centre of mass over the edge): the paper's rule for an edge balance tips
+      // it towards that face.
+      const int face = face_under_com(run, support);
+      if (face >= 0 && !face_on_wall(face)) {
+        if (tip_offs_ < kTipOffs && band.size() >= 2 && tip_onto_face(band, face)) {
+          ++tip_offs_;
+          return begin_segment();
+        }
+      } else if (auto rest = flush_rest(run, support)) {
         velocity_ = omega_ = Vec3::Zero();
         return rest;
-      }
-      // Still, on a face the paper's test calls unstable: balanced on its boundary to round-off (a designed
-      // die's face whose margin is 0 to 1e-12·L). Left by the paper's rule for an edge balance.
-      if (tip_offs_ < kTipOffs && tip_off_balance(support)) {
+      } else if (tip_offs_ < kTipOffs && tip_off_balance(support)) {
+        // Still, on a face the paper's test calls unstable: balanced on its boundary to round-off (a designed
+        // die's face whose margin is 0 to 1e-12·L). Left by the paper's rule for an edge balance.
         ++tip_offs_;
         return begin_segment();
       }
@@ -223,6 +232,47 @@ bool FrictionalContact::tip_off_balance(const Support& support) {
     if ((g - a).dot(n) > lean) lean = (g - a).dot(n), pivot = loop[i], outward = n;
   }
   if (!std::isfinite(lean)) return false;
+  turn_past_line(pivot, outward);
+  return true;
+}
+
+bool FrictionalContact::face_on_wall(int face) const {
+  for (int k : run_.particle.hull.faces[static_cast<std::size_t>(face)].loop)
+    if (run_.com.z() + (run_.q * run_.particle.hull.vertices[static_cast<std::size_t>(k)]).z() >
+        run_.tol.frictional_band)
+      return false;
+  return true;
+}
+
+// A still body on the points `band` (hull vertices within the band), its centre of mass over `face` whose
+// points are not all on the wall: it is turned about the line through the two band points farthest apart
+// until the centre of mass is balance_offset beyond that line on the face's side. True if it was turned.
+bool FrictionalContact::tip_onto_face(const std::vector<int>& band, int face) {
+  Run& run = run_;
+  const auto world = [&](int k) -> Vec3 {
+    return run.com + run.q * run.particle.hull.vertices[static_cast<std::size_t>(k)];
+  };
+  Vec3 a = world(band[0]), b = a;
+  for (std::size_t i = 0; i < band.size(); ++i)
+    for (std::size_t j = i + 1; j < band.size(); ++j)
+      if ((world(band[j]) - world(band[i])).head<2>().norm() > (b - a).head<2>().norm())
+        a = world(band[i]), b = world(band[j]);
+  Vec2 outward(b.y() - a.y(), a.x() - b.x());
+  if (!(outward.norm() > 0)) return false;
+  outward.normalize();
+  Vec2 centre = Vec2::Zero();
+  const auto& loop = run.particle.hull.faces[static_cast<std::size_t>(face)].loop;
+  for (int k : loop) centre += world(k).head<2>() / static_cast<double>(loop.size());
+  if (outward.dot(centre - a.head<2>()) < 0) outward = -outward;
+  turn_past_line(a, outward);
+  return true;
+}
+
+// Turns the body at rest about the horizontal line through `pivot` normal to `outward` (a unit vector in the
+// wall's plane) until its centre of mass is balance_offset beyond the line along `outward`.
+void FrictionalContact::turn_past_line(const Vec3& pivot, const Vec2& outward) {
+  Run& run = run_;
+  const double lean = (run.com.head<2>() - pivot.head<2>()).dot(outward);
   // A turn by α about ẑ × n moves the centre of mass outward: lean(α) = d·sin(α + atan2(lean, h)).
   const double height = run.com.z() - pivot.z(), d = std::hypot(height, lean);
   const double alpha = std::asin(std::min(1.0, run.tol.balance_offset / d)) - std::atan2(lean, height);
@@ -231,7 +281,6 @@ bool FrictionalContact::tip_off_balance(const Support& support) {
   run.q = (turn * run.q).normalized();
   run.com = pivot + turn * (run.com - pivot);
   velocity_ = omega_ = Vec3::Zero();
-  return true;
 }
 
 ContactForces FrictionalContact::forces_at(const BodyState& s) const {
@@ -359,7 +408,9 @@ double FrictionalContact::locate_event(double a, double b) {
     sample(t, h1, w1);
     bool touch = touches(t);
     double upper = t;
-    if (const double d = dip(prev, t); !touch && d < t && touches(d)) {
+    // A dip before t, even where something is below the wall at t: the bisection would otherwise find the
+    // later crossing and pass over the dip.
+    if (const double d = dip(prev, t); d < t && touches(d)) {
       touch = true;
       upper = d;
     }

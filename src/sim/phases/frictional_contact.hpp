@@ -52,6 +52,9 @@ class FrictionalContact {
   bool resolve_painleve();
   void hold_sticking_points();
   bool tip_off_balance(const Support& support);
+  bool face_on_wall(int face) const;
+  bool tip_onto_face(const std::vector<int>& band, int face);
+  void turn_past_line(const Vec3& pivot, const Vec2& outward);
   Eigen::VectorXd stopping_impulses(const std::vector<Vec3>& arms) const;
   BodyRates rates(const BodyState& s) const;
   ContactForces forces_at(const BodyState& s) const;  // at the segment's points, by their rules

@@ -1,5 +1,6 @@
 // The frictional contact phase's impulses (frictional_contact.hpp): impacts, Zeno's captures, the hold of
 // sticking points and Painlevé's impacts without collision.
+#include <algorithm>
 #include <cmath>
 
 #include "frictional_contact.hpp"
@@ -48,14 +49,16 @@ Eigen::VectorXd FrictionalContact::stopping_impulses(const std::vector<Vec3>& ar
   return W.completeOrthogonalDecomposition().solve(-u0);
 }
 
-// Sticking points keep a residual velocity, the integrator's drift (below slip_speed along the wall, below
-// speed across it): it is taken out at each segment's start, so that it neither accumulates into a slip
-// nor into a depth. The kinetic energy this removes is at most ½·m·slip_speed² (5e-13·m·g·L).
+// Points at rest on the wall keep a residual velocity, the integrator's drift (below slip_speed along the
+// wall, below speed across it): it is taken out at each segment's start, so that it neither accumulates into
+// a slip nor into a depth — and, at a point that starts to slide, so that the force on the cone's edge
+// (against the slip's acceleration, not this residual) does no work on it: 1e-6·√(g·L) of residual slip
+// under μ·m·g would feed the body ~1e-8·m·g·L in a hundredth of τ. The kinetic energy this removes is
+// ½·uᵀ·W⁺·u ≤ ½·m·slip_speed² per point (5e-13·m·g·L), never added (least-norm stopping impulses).
 void FrictionalContact::hold_sticking_points() {
   std::vector<Vec3> arms;
   for (std::size_t i = 0; i < active_.size(); ++i)
-    if (i < forces_.modes.size() && forces_.modes[i] == ContactMode::stick &&
-        conditions_[i].rule == PointRule::unilateral)
+    if (conditions_[i].rule == PointRule::unilateral)
       arms.push_back(run_.q * run_.particle.hull.vertices[static_cast<std::size_t>(active_[i])]);
   if (arms.empty()) return;
   const Eigen::VectorXd P = stopping_impulses(arms);
@@ -155,13 +158,36 @@ bool FrictionalContact::resolve_painleve() {
   record.points = static_cast<int>(n);
   record.stick = true;
   record.energy_before = sim::kinetic_energy(m, inertia, {velocity_, omega_}) + run.potential_energy();
-  Vec3 centre = Vec3::Zero();
-  double total = 0;
+  std::vector<Vec3> impulses(n, Vec3::Zero());
   for (std::size_t i = 0; i < n; ++i) {
     Vec3 p = P.segment<3>(3 * i);
     if (!(p.z() > 0)) continue;
     const double cone = run.params.friction * p.z(), t = p.head<2>().norm();
     if (t > cone) p.head<2>() *= cone / t;
+    impulses[i] = p;
+  }
+  // Dropping and projecting can leave impulses that add kinetic energy. Scaled by s (the cones hold any
+  // s ≥ 0), the kinetic energy is K0 + a·s + b·s² with a = Σ P_i·u_i: s is the minimiser, at most 1.
+  const auto energy_after = [&](double scale) {
+    Vec3 v = velocity_, w = omega_;
+    for (std::size_t i = 0; i < n; ++i) {
+      v += scale * impulses[i] / m;
+      w += inverse_inertia * arms[i].cross(scale * impulses[i]);
+    }
+    return sim::kinetic_energy(m, inertia, {v, w});
+  };
+  const double k0 = sim::kinetic_energy(m, inertia, {velocity_, omega_}), k1 = energy_after(1.0);
+  double scale = 1;
+  if (k1 > k0) {
+    double a = 0;
+    for (std::size_t i = 0; i < n; ++i) a += impulses[i].dot(u0.segment<3>(3 * i));
+    const double b = k1 - k0 - a;
+    scale = b > 0 ? std::clamp(-a / (2 * b), 0.0, 1.0) : 0.0;
+  }
+  Vec3 centre = Vec3::Zero();
+  double total = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 p = scale * impulses[i];
     velocity_ += p / m;
     omega_ += inverse_inertia * arms[i].cross(p);
     centre += p.z() * arms[i];
