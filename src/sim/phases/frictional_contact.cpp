@@ -275,7 +275,18 @@ void FrictionalContact::turn_past_line(const Vec3& pivot, const Vec2& outward) {
   const double lean = (run.com.head<2>() - pivot.head<2>()).dot(outward);
   // A turn by α about ẑ × n moves the centre of mass outward: lean(α) = d·sin(α + atan2(lean, h)).
   const double height = run.com.z() - pivot.z(), d = std::hypot(height, lean);
-  const double alpha = std::asin(std::min(1.0, run.tol.balance_offset / d)) - std::atan2(lean, height);
+  double alpha = std::asin(std::min(1.0, run.tol.balance_offset / d)) - std::atan2(lean, height);
+  // No vertex is turned below the wall: a vertex at (x, z) from the line (x along `outward`) goes to
+  // z·cos α − x·sin α; the turn stops where the first reaches the wall (a new support, from which the next
+  // segment goes on).
+  const double side = alpha >= 0 ? 1.0 : -1.0;
+  for (const Vec3& v : run.particle.hull.vertices) {
+    const Vec3 r = run.com + run.q * v - pivot;
+    const double x = side * r.head<2>().dot(outward), z = r.z(), reach = std::hypot(x, z);
+    if (!(x > 0) || !(reach > 0)) continue;
+    const double limit = std::acos(std::clamp(-pivot.z() / reach, -1.0, 1.0)) - std::atan2(x, z);
+    if (side * alpha > limit) alpha = side * std::max(limit, 0.0);
+  }
   const Vec3 axis = Vec3::UnitZ().cross(Vec3(outward.x(), outward.y(), 0));
   const Quat turn(Eigen::AngleAxisd(alpha, axis));
   run.q = (turn * run.q).normalized();
