@@ -136,7 +136,11 @@ Vec3 local_reaction(const Mat3& W, const Vec3& f, double mu, const PointConditio
 }  // namespace
 
 Mat3 delassus_block(double mass, const Mat3& inverse_inertia, const Vec3& r) {
-  return Mat3::Identity() / mass - skew(r) * inverse_inertia * skew(r);
+  return delassus_block(mass, inverse_inertia, r, r);
+}
+
+Mat3 delassus_block(double mass, const Mat3& inverse_inertia, const Vec3& r_i, const Vec3& r_j) {
+  return Mat3::Identity() / mass - skew(r_i) * inverse_inertia * skew(r_j);
 }
 
 Vec3 point_value(const ContactProblem& p, std::size_t i, const Vec3& lin, const Vec3& ang) {
@@ -185,8 +189,7 @@ std::optional<ContactSolution> solve_contacts_by_pivoting(const ContactProblem& 
     rows_i.row(0) = Eigen::RowVector3d(0, 0, 1);
     q.segment(first[i], cols_i) = rows_i * point_value(p, i, lin, ang);
     for (std::size_t j = 0; j < n; ++j) {
-      // W_ij: a unit reaction at j changes the value at i by W_ij·R (delassus_block is W_ii).
-      const Mat3 W = Mat3::Identity() / p.mass - skew(p.arms[i]) * p.inverse_inertia * skew(p.arms[j]);
+      const Mat3 W = delassus_block(p.mass, p.inverse_inertia, p.arms[i], p.arms[j]);
       M.block(first[i], first[j], cols_i, G[j].cols()) = rows_i * W * G[j];
     }
     if (conditions[i].rule == PointRule::sliding) continue;

@@ -70,6 +70,10 @@ std::optional<ContactSolution> solve_contacts_by_pivoting(const ContactProblem& 
 /// velocity (or acceleration) by K·R, K = 1/m − [r]× I⁻¹ [r]×.
 Mat3 delassus_block(double mass, const Mat3& inverse_inertia, const Vec3& r);
 
+/// The off-diagonal block: a unit reaction at r_j changes the velocity (or acceleration) of the point r_i by
+/// W_ij·R, W_ij = 1/m − [r_i]× I⁻¹ [r_j]×.
+Mat3 delassus_block(double mass, const Mat3& inverse_inertia, const Vec3& r_i, const Vec3& r_j);
+
 /// The value x_i of point i for (lin, ang).
 Vec3 point_value(const ContactProblem& problem, std::size_t i, const Vec3& lin, const Vec3& ang);
 

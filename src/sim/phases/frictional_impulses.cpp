@@ -36,15 +36,10 @@ Eigen::VectorXd FrictionalContact::stopping_impulses(const std::vector<Vec3>& ar
   const std::size_t n = arms.size();
   Eigen::MatrixXd W(3 * n, 3 * n);
   Eigen::VectorXd u0(3 * n);
-  const auto cross = [](const Vec3& r) {
-    Mat3 x;
-    x << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
-    return x;
-  };
   for (std::size_t i = 0; i < n; ++i) {
     u0.segment<3>(3 * i) = velocity_ + omega_.cross(arms[i]);
     for (std::size_t j = 0; j < n; ++j)
-      W.block<3, 3>(3 * i, 3 * j) = Mat3::Identity() / m - cross(arms[i]) * inverse_inertia * cross(arms[j]);
+      W.block<3, 3>(3 * i, 3 * j) = delassus_block(m, inverse_inertia, arms[i], arms[j]);
   }
   return W.completeOrthogonalDecomposition().solve(-u0);
 }
