@@ -235,10 +235,11 @@ TEST(Property, RandomDropsKeepEveryInvariantWithTheAdaptiveIntegrator) {
 }
 // Issue 34: the same invariants (no overlap, energy never rising, every rest a static equilibrium) for
 // tosses with random E, finite μ (the frictional contact phase), velocities and spins.
-// 40 here (6 under the sanitizers). The 10,000-toss sweep (REPOSE_PROPERTY_DROPS=10000, session 20, ~45 min
-// on 2 busy cores) broke a property in 52 tosses, none of them among these 40: 25 non-finite states, all with
-// μ ≥ 1.9 (boxes and grains), 15 vertices 1e-9 to 7e-9·L below the wall, 6 energy rises of ~1e-8·m·g·L and 6
-// rests declared before the face landed. Open (issue 34); the repro lines are in the session's closing note.
+// 40 here (6 under the sanitizers). The 10,000-toss sweep (REPOSE_PROPERTY_DROPS=10000
+// REPOSE_PROPERTY_THREADS=2, 36 min on 2 cores) broke a property in 52 tosses on f0cb9c4 (25 non-finite
+// states at μ ≥ 1.9, 15 depths to 7e-9·L, 6 energy rises of ~1e-8·m·g·L, 6 early rests); fixed in session 21
+// (one toss per cause in PropertyEngineBug.TossesThatBrokeTheTenThousandTossSweep), it passes on 10,000 of
+// 10,000: largest energy rise between samples 1.8e-9·m·g·L, lowest vertex −1.0e-10·L.
 TEST(Property, RandomTossesWithFrictionKeepEveryInvariant) {
   sweep_and_check(kDefaultDrops >= 10000 ? 40 : 6, false, Integrator::adaptive, true);
 }
