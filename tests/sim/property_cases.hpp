@@ -458,9 +458,11 @@ inline Outcome run_case(const Case& c, const Particle& p) {
     const double step = r.time - t_prev;
     const double alpha = p.mass.mass * kG * L / p.mass.principal_moments.minCoeff();
     // The frictional phase (finite μ) lays the face flush once all its points are within its band of the
-    // wall, 1e-7·L (kFrictionalBand, docs/method.md): a turn of at most band / w, w the face's smallest width.
+    // wall, 1e-7·L (kFrictionalBand, docs/method.md): a turn of at most band / w, w the face's smallest
+    // width.
     double flush = 0;
-    if (std::isfinite(prm.friction) && r.rest_face >= 0 && r.rest_face < static_cast<int>(p.hull.faces.size()))
+    if (std::isfinite(prm.friction) && r.rest_face >= 0 &&
+        r.rest_face < static_cast<int>(p.hull.faces.size()))
       flush = 1e-7 * L / face_width(p, r.rest_face);
     const double reach = 1.5 * (omega_prev * step + 0.5 * alpha * step * step + flush) + 1e-6;
     if (o.rest_snap > reach)

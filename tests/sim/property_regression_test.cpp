@@ -285,8 +285,8 @@ TEST(PropertyEngineBug, SmoothEdgeRockingPingPongsBetweenTwoPivots) {
 //   604        Painlevé's stopping impulses, dropped and projected into the cones, added 2e-8·m·g·L.
 //   9443       a point starting to slide kept its drift slip under a force on the cone's edge (energy rose
 //              1.1e-8·m·g·L in one segment).
-//   6743       a smooth ellipsoid still on an edge at the top of its rocking was snapped flush from 0.028 rad.
-//   2430       a coin tipped onto its face turned a rim vertex 4e-8·L below the wall.
+//   6743       a smooth ellipsoid still on an edge at the top of its rocking was snapped flush from 0.028
+//   rad. 2430       a coin tipped onto its face turned a rim vertex 4e-8·L below the wall.
 // The sanitizer build (~10× slower) leaves out the two longest, 604 and 2430 (1.5 s each here).
 TEST(PropertyEngineBug, TossesThatBrokeTheTenThousandTossSweep) {
 #ifdef NDEBUG

@@ -77,8 +77,8 @@ TEST(Rebound, ABallBouncesToTheGeometricSeriesOfApexesAndStopsAtItsSum) {
   bool flight_ends_there = false;
   const double sum = t0 * (1 + e) / (1 - e), capture = r.impacts[series].t;
   for (const Phase& ph : r.phases)
-    flight_ends_there = flight_ends_there ||
-                        (ph.contact == ContactType::flight && std::abs(ph.t1 - capture) <= 1e-12 * sum);
+    flight_ends_there =
+        flight_ends_there || (ph.contact == ContactType::flight && std::abs(ph.t1 - capture) <= 1e-12 * sum);
   EXPECT_TRUE(flight_ends_there);
   EXPECT_NEAR(capture, sum, 1e-4 * sum);
   EXPECT_LE(r.max_penetration, 1e-9 * ball.length);
