@@ -373,5 +373,37 @@ TEST(FrictionalContact, BalanceOnAFaceOfZeroMarginIsTippedOff) {
   EXPECT_LT(r.steps, 100000);
 }
 
+// Painlevé's rod: a 1 × 0.05 × 0.05 rod (density 1, m = 2.5 g: its impulses are far below 1 in SI) standing
+// at 45° on its foot edge, started on the wall sliding foot first at v0 = 1 m/s. The foot edge's midpoint is
+// r = R·(−0.5, 0, −0.025) from the centre of mass; a single point there has no consistent normal force once
+// μ > W_nn/W_nt = (1/m + r_x²/I)/(r_x·r_z/I) = 1.575 (I = m·(1 + 0.05²)/12 about y). At μ = 2 the slide ends
+// at once in an impact without collision that stops the foot (Génot & Brogliato's dynamic jam); the impulse
+// at the foot keeps the angular momentum about it, L = m·|r_z|·v0, so the kinetic energy left is
+// L²/(2·I_foot), I_foot = I + m·|r|², the rest lost (1e-9 relative: round-off of a least-norm solve). At
+// μ = 1 the foot slides on, with no such impact.
+TEST(FrictionalContact, PainleveRodJamsByAnImpactWithoutCollision) {
+  const Particle rod = load_particle("box:x=1,y=0.05,z=0.05", 1.0);
+  const double m = rod.mass.mass;
+  const Quat q(Eigen::AngleAxisd(-kPi / 4, Vec3::UnitY()));
+  const Vec3 r = q * Vec3(-0.5, 0, -0.025);
+  const double inertia = m * (1 + 0.05 * 0.05) / 12;
+  const double i_foot = inertia + m * (r.x() * r.x() + r.z() * r.z());
+  const double angular_momentum = m * std::abs(r.z()) * 1.0;
+  const double lost = 0.5 * m - angular_momentum * angular_momentum / (2 * i_foot);
+  SettleParams p = sliding_start(Vec3(-1, 0, 0), 2.0);
+  const SettleResult jam = settle(rod, p, q);
+  ASSERT_GE(jam.painleve, 1);
+  ASSERT_FALSE(jam.impacts.empty());
+  const ImpactRecord& first = jam.impacts.front();
+  EXPECT_EQ(first.t, 0.0);
+  EXPECT_TRUE(first.stick);
+  EXPECT_LE(first.tangential_speed_after, 1e-9);
+  EXPECT_NEAR(first.energy_before - first.energy_after, lost, 1e-9 * lost);
+  p.friction = 1.0;
+  const SettleResult slide = settle(rod, p, q);
+  for (const ImpactRecord& i : slide.impacts) EXPECT_GT(i.t, 0.0);
+  EXPECT_EQ(slide.painleve, 0);
+}
+
 }  // namespace
 }  // namespace repose
