@@ -42,8 +42,8 @@ ContactForces contact_forces(const ContactBody& body, const Motion& motion, cons
   ContactSolution s = solve_contacts(problem, lin, ang, conditions);
   // No solution reached (Gauss–Seidel diverged and Lemke's method ended on a ray): no contact force, and
   // every sliding point driven into the wall is Painlevé's inconsistent case (below), resolved by the phase.
-  const bool finite = s.solved;
-  if (!finite) {
+  const bool solved = s.solved;
+  if (!solved) {
     s.reactions.assign(n, Vec3::Zero());
     s.lin = lin;
     s.ang = ang;
@@ -66,7 +66,7 @@ ContactForces contact_forces(const ContactBody& body, const Motion& motion, cons
     if (conditions[i].rule == PointRule::sliding && !pressed && value.z() < -tiny) {
       const Mat3 W = delassus_block(problem.mass, problem.inverse_inertia, arms[i]);
       out.inconsistent[i] =
-          !finite || W(2, 2) - friction * W.block<1, 2>(2, 0).dot(conditions[i].direction) <= 0;
+          !solved || W(2, 2) - friction * W.block<1, 2>(2, 0).dot(conditions[i].direction) <= 0;
     }
   }
   return out;

@@ -146,7 +146,7 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
     classify();
     forces_ = forces_at({run.com, velocity_, run.q, omega_});
   }
-  hold_sticking_points();
+  hold_resting_points();
   // The contact type by the points on the wall (flight when none).
   const std::size_t n = active_.size();
   if (run.trace)

@@ -50,7 +50,7 @@ class FrictionalContact {
   bool resolve_impacts();
   bool capture_returning_points();
   bool resolve_painleve();
-  void hold_sticking_points();
+  void hold_resting_points();
   bool tip_off_balance(const Support& support);
   bool face_on_wall(int face) const;
   bool tip_onto_face(const std::vector<int>& band, int face);

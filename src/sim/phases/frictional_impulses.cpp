@@ -50,7 +50,7 @@ Eigen::VectorXd FrictionalContact::stopping_impulses(const std::vector<Vec3>& ar
 // (against the slip's acceleration, not this residual) does no work on it: 1e-6·√(g·L) of residual slip
 // under μ·m·g would feed the body ~1e-8·m·g·L in a hundredth of τ. The kinetic energy this removes is
 // ½·uᵀ·W⁺·u ≤ ½·m·slip_speed² per point (5e-13·m·g·L), never added (least-norm stopping impulses).
-void FrictionalContact::hold_sticking_points() {
+void FrictionalContact::hold_resting_points() {
   std::vector<Vec3> arms;
   for (std::size_t i = 0; i < active_.size(); ++i)
     if (conditions_[i].rule == PointRule::unilateral)
