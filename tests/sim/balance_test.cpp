@@ -54,5 +54,24 @@ TEST(Balance, SmoothSphereOnAnEdgeIsTippedOffByTheRuleAndFallsAsAPendulum) {
   EXPECT_LT(nearest, 1e-9 * sphere.length);
 }
 
+// A face whose stability margin is exactly 0 (the triangular prism of frictional_balance_test.cpp: section
+// A(0,0), B(1,0), C(2,1), centroid x = 1 over the edge B of AB), started at rest on AB with the paper's rolling
+// contact (friction inf). It used to stay balanced there until the step limit (10,000 steps, 634 s); the rule
+// now tips it outwards over B and it rolls onto BC about the fixed edge: the centre of mass ends at
+// x = d·sin(π/4), d = |BG| = 1/3 (1e-9·L: the flush snap), on the face BC.
+TEST(Balance, FaceOfZeroMarginIsTippedOffOverTheEdgeUnderTheCentreOfMass) {
+  TriangleMesh mesh;
+  for (const double y : {0.0, 1.0})
+    for (const Vec2& xz : {Vec2(0, 0), Vec2(1, 0), Vec2(2, 1)}) mesh.vertices.emplace_back(xz.x(), y, xz.y());
+  MeshOptions options;
+  options.inertia = InertiaModel::convex;
+  const Particle prism = make_particle(mesh, "prism", 1000.0, options);
+  const SettleResult r = settle(prism, SettleParams{}, Quat::Identity());
+  ASSERT_EQ(r.status, Status::rest);
+  EXPECT_TRUE(r.down_normal_body.isApprox(Vec3(1, 0, -1).normalized(), 1e-9));
+  EXPECT_NEAR(r.com.x(), std::sin(3.141592653589793 / 4) / 3, 1e-9 * prism.length);
+  EXPECT_LT(r.steps, 1000);
+}
+
 }  // namespace
 }  // namespace repose

@@ -176,13 +176,35 @@ bool Contact::touching_points_hold(const Vec2& g) const {
 // That is an unstable equilibrium, not a rest. Rule (docs/method.md): turn the particle about the edge until
 // its centre of mass is tol::kBalanceOffset·L beyond it, on the side it leans to by round-off (the left of
 // the edge's direction when exactly on it), with no motion; the run then integrates the fall, and its time.
-// True if it was on a balance (the motion restarts).
+// The same on a face whose stability margin is 0 to round-off (the centre of mass on its boundary), tipped
+// outwards over that boundary edge. True if it was on a balance (the motion restarts).
 bool Contact::tip_off_edge_balance(const Vec2& g) {
   Run& run = run_;
   const double touch = run.tol.touch;
   const std::vector<Vec2> poly = touching_polygon(run.q);
-  if (poly.size() != 2) return false;
-  const Vec2 a = poly[0], edge = poly[1] - poly[0];
+  if (poly.size() < 2) return false;
+  // The edge: the touching segment, or, on a face that failed the paper's test (its flush rest was refused
+  // before this), the face's boundary edge the centre of mass is on (a face whose stability margin is 0 to
+  // round-off: tipped off it, outwards).
+  Vec2 a = poly[0], edge = poly[1] - poly[0];
+  double outward = 0;  // the side to tip to: +1 left of the edge, −1 right, 0 the side it leans to
+  if (poly.size() >= 3) {
+    Vec2 centre = Vec2::Zero();
+    for (const Vec2& p : poly) centre += p / static_cast<double>(poly.size());
+    double nearest = INFINITY;
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+      const Vec2 p = poly[i], side = poly[(i + 1) % poly.size()] - p;
+      if (!(side.norm() > 0)) continue;
+      const Vec2 n = side.normalized();
+      const double distance = std::abs(n.x() * (g.y() - p.y()) - n.y() * (g.x() - p.x()));
+      if (distance < nearest) {
+        nearest = distance;
+        a = p;
+        edge = side;
+        outward = n.x() * (centre.y() - p.y()) - n.y() * (centre.x() - p.x()) > 0 ? -1.0 : 1.0;
+      }
+    }
+  }
   const Vec2 e = edge.normalized();
   const double along = (g - a).dot(e);
   const double lean = e.x() * (g.y() - a.y()) - e.y() * (g.x() - a.x());  // left of the edge: positive
@@ -202,7 +224,7 @@ bool Contact::tip_off_edge_balance(const Vec2& g) {
   const Vec3 axis(e.x(), e.y(), 0.0);
   const double height = run.com.z() - pivot.z();
   const double d = std::hypot(height, lean);
-  const double target = (lean < 0 ? -1.0 : 1.0) * run.tol.balance_offset;
+  const double target = (outward != 0 ? outward : lean < 0 ? -1.0 : 1.0) * run.tol.balance_offset;
   // A rotation by −α about the edge direction moves the centre of mass to the left by d·sin α.
   const double alpha = std::asin(target / d) - std::atan2(lean, height);
   const Quat turn(Eigen::AngleAxisd(-alpha, axis));
