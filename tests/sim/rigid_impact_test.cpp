@@ -12,8 +12,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 namespace repose::sim {
 namespace {
@@ -296,6 +298,7 @@ TEST(RigidImpact, SlipPassingNearZeroMatchesAnIntegrationInItsArclength) {
   std::mt19937_64 rng(4242);
   std::uniform_real_distribution<double> u(-1, 1), size(0.2, 2), unit(0, 1);
   int compared = 0;
+  std::vector<double> errors;
 #ifdef NDEBUG
   const int cases = 40;
 #else
@@ -367,12 +370,17 @@ TEST(RigidImpact, SlipPassingNearZeroMatchesAnIntegrationInItsArclength) {
     if (!(smallest < 1e-2 && smallest > 1e-6)) continue;
     ++compared;
     const ImpactOutcome out = collide(m, inertia, r, before, {e, mu});
+    errors.push_back((out.impulse - P).norm() / P.norm());
     EXPECT_LT((out.impulse - P).norm(), 1e-3 * P.norm())
         << "impact " << i << " (smallest slip " << smallest << "): code " << out.impulse.transpose()
         << ", reference " << P.transpose();
     EXPECT_FALSE(out.fallback);
   }
   EXPECT_EQ(compared, cases);
+  // The typical case: half of them within 2e-7 (2.9e-8 measured; resolving the pass by the turn alone,
+  // without bounding the slip's change per step, leaves the median at 5.8e-7).
+  std::sort(errors.begin(), errors.end());
+  EXPECT_LT(errors[errors.size() / 2], 2e-7);
 }
 
 // Grazing impacts (u_n 1e-4 to 1e-2 of u_t) with μ in [0.5, 2]: jams among them, whose slip must stop before
