@@ -55,9 +55,9 @@ TEST(Balance, SmoothSphereOnAnEdgeIsTippedOffByTheRuleAndFallsAsAPendulum) {
 }
 
 // A face whose stability margin is exactly 0 (the triangular prism of frictional_balance_test.cpp: section
-// A(0,0), B(1,0), C(2,1), centroid x = 1 over the edge B of AB), started at rest on AB with the paper's rolling
-// contact (friction inf). It used to stay balanced there until the step limit (10,000 steps, 634 s); the rule
-// now tips it outwards over B and it rolls onto BC about the fixed edge: the centre of mass ends at
+// A(0,0), B(1,0), C(2,1), centroid x = 1 over the edge B of AB), started at rest on AB with the paper's
+// rolling contact (friction inf). It used to stay balanced there until the step limit (10,000 steps, 634 s);
+// the rule now tips it outwards over B and it rolls onto BC about the fixed edge: the centre of mass ends at
 // x = d·sin(π/4), d = |BG| = 1/3 (1e-9·L: the flush snap), on the face BC.
 TEST(Balance, FaceOfZeroMarginIsTippedOffOverTheEdgeUnderTheCentreOfMass) {
   TriangleMesh mesh;
