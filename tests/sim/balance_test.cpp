@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "../support/pendulum.hpp"
+#include "../support/zero_margin_prism.hpp"
 #include "repose/model/particle.hpp"
 #include "repose/sim/settle.hpp"
 
@@ -60,12 +61,7 @@ TEST(Balance, SmoothSphereOnAnEdgeIsTippedOffByTheRuleAndFallsAsAPendulum) {
 // the rule now tips it outwards over B and it rolls onto BC about the fixed edge: the centre of mass ends at
 // x = d·sin(π/4), d = |BG| = 1/3 (1e-9·L: the flush snap), on the face BC.
 TEST(Balance, FaceOfZeroMarginIsTippedOffOverTheEdgeUnderTheCentreOfMass) {
-  TriangleMesh mesh;
-  for (const double y : {0.0, 1.0})
-    for (const Vec2& xz : {Vec2(0, 0), Vec2(1, 0), Vec2(2, 1)}) mesh.vertices.emplace_back(xz.x(), y, xz.y());
-  MeshOptions options;
-  options.inertia = InertiaModel::convex;
-  const Particle prism = make_particle(mesh, "prism", 1000.0, options);
+  const Particle prism = test_shapes::zero_margin_prism();
   const SettleResult r = settle(prism, SettleParams{}, Quat::Identity());
   ASSERT_EQ(r.status, Status::rest);
   EXPECT_TRUE(r.down_normal_body.isApprox(Vec3(1, 0, -1).normalized(), 1e-9));

@@ -10,6 +10,8 @@
 #include <repose/sim/settle.hpp>
 #include <string>
 
+#include "../support/zero_margin_prism.hpp"
+
 namespace repose {
 namespace {
 
@@ -84,12 +86,7 @@ TEST(FrictionalContact, StillOnAnEdgeGoesOverToTheSideItsCentreOfMassLeansTo) {
 // started, under the centre of mass, and the centre of mass ends at x = d·sin(π/4) (1e-6·L: the flush snap
 // within the contact band). At μ = 0.3 the landing slips; the face is the same.
 TEST(FrictionalContact, PrismOnAFaceOfZeroMarginTipsOverTheEdgeUnderItsCentreOfMass) {
-  TriangleMesh mesh;
-  for (const double y : {0.0, 1.0})
-    for (const Vec2& xz : {Vec2(0, 0), Vec2(1, 0), Vec2(2, 1)}) mesh.vertices.emplace_back(xz.x(), y, xz.y());
-  MeshOptions options;
-  options.inertia = InertiaModel::convex;
-  const Particle prism = make_particle(mesh, "prism", 1000.0, options);
+  const Particle prism = test_shapes::zero_margin_prism();
   // The hull faces of AB (outward −z) and BC (outward (1, 0, −1)/√2), in the body frame.
   int ab = -1, bc = -1;
   for (std::size_t f = 0; f < prism.hull.faces.size(); ++f) {

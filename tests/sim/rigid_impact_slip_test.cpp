@@ -13,6 +13,44 @@
 namespace repose::sim {
 namespace {
 
+// One RK4 step of (P, work) over h, d(P, work)/ds = rate(P) for the independent variable s.
+template <class Rate>
+void rk4(const Rate& rate, Vec3& P, double& w, double h) {
+  const auto [k1, w1] = rate(P);
+  const auto [k2, w2] = rate(P + 0.5 * h * k1);
+  const auto [k3, w3] = rate(P + 0.5 * h * k2);
+  const auto [k4, w4] = rate(P + h * k3);
+  P += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+  w += h / 6 * (w1 + 2 * w2 + 2 * w3 + w4);
+}
+
+// Steps of h until `ended(P, w)` turns true, the last one then bisected onto that point `halvings` times;
+// `each(P)` sees every step's end and may abort (false). False if it does not end within `budget` steps.
+template <class Rate, class Ended, class Each>
+bool integrate_phase(const Rate& rate, Vec3& P, double& w, double h, const Ended& ended, const Each& each,
+                     int budget, int halvings) {
+  for (int k = 0; k < budget; ++k) {
+    Vec3 P1 = P;
+    double w1 = w;
+    rk4(rate, P1, w1, h);
+    if (!each(P1)) return false;
+    if (!ended(P1, w1)) {
+      P = P1, w = w1;
+      continue;
+    }
+    double lo = 0, hi = h;
+    for (int b = 0; b < halvings; ++b) {
+      Vec3 Pm = P;
+      double wm = w;
+      rk4(rate, Pm, wm, 0.5 * (lo + hi));
+      (ended(Pm, wm) ? hi : lo) = 0.5 * (lo + hi);
+    }
+    rk4(rate, P, w, hi);
+    return true;
+  }
+  return false;
+}
+
 // Stronge's energetic restitution in 3-D, where the sliding direction turns: against an independent
 // integration of the same law (RK4 in the normal impulse p with 40,000 steps per phase, each phase's end
 // found by halving its last step). Cases that keep sliding throughout (the slip never falls below a tenth
@@ -42,37 +80,14 @@ TEST(RigidImpact, RestitutionEndsAtStrongesEnergyTargetWhenTheSlipTurns) {
       const Vec2 s = v.head<2>().normalized();
       return std::pair<Vec3, double>(Vec3(-mu * s.x(), -mu * s.y(), 1), v.z());
     };
-    const auto rk4 = [&](Vec3& P, double& w, double h) {
-      const auto [k1, w1] = rate(P);
-      const auto [k2, w2] = rate(P + 0.5 * h * k1);
-      const auto [k3, w3] = rate(P + 0.5 * h * k2);
-      const auto [k4, w4] = rate(P + h * k3);
-      P += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
-      w += h / 6 * (w1 + 2 * w2 + 2 * w3 + w4);
-    };
     bool sliding = true;
     // Integrates until `ended(P, w)` turns true, then halves the last step onto that point.
     const auto phase = [&](Vec3& P, double& w, double h, auto ended) {
-      for (int k = 0; k < 400000; ++k) {
-        Vec3 P1 = P;
-        double w1 = w;
-        rk4(P1, w1, h);
-        if ((u0 + K * P1).head<2>().norm() < 0.1 * u0.head<2>().norm()) sliding = false;
-        if (!ended(P1, w1)) {
-          P = P1, w = w1;
-          continue;
-        }
-        double lo = 0, hi = h;
-        for (int b = 0; b < 40; ++b) {
-          Vec3 Pm = P;
-          double wm = w;
-          rk4(Pm, wm, 0.5 * (lo + hi));
-          (ended(Pm, wm) ? hi : lo) = 0.5 * (lo + hi);
-        }
-        rk4(P, w, hi);
+      const auto each = [&](const Vec3& at) {
+        if ((u0 + K * at).head<2>().norm() < 0.1 * u0.head<2>().norm()) sliding = false;
         return true;
-      }
-      return false;
+      };
+      return integrate_phase(rate, P, w, h, ended, each, 400000, 40);
     };
     Vec3 P = Vec3::Zero();
     double w = 0;
@@ -135,43 +150,19 @@ TEST(RigidImpact, SlipPassingNearZeroMatchesAnIntegrationInItsArclength) {
       const double slip = v.head<2>().norm();
       return std::pair<Vec3, double>(Vec3(-mu * v.x(), -mu * v.y(), slip), slip * v.z());
     };
-    const auto rk4 = [&](Vec3& P, double& w, double h) {
-      const auto [k1, w1] = rate(P);
-      const auto [k2, w2] = rate(P + 0.5 * h * k1);
-      const auto [k3, w3] = rate(P + 0.5 * h * k2);
-      const auto [k4, w4] = rate(P + h * k3);
-      P += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
-      w += h / 6 * (w1 + 2 * w2 + 2 * w3 + w4);
-    };
     double smallest = INFINITY;
     const double slip0 = u0.head<2>().norm();
     // Integrates until `ended` turns true, the end bisected; false if it does not end within the budget.
     const auto phase = [&](Vec3& P, double& w, double h, auto ended) {
-      for (int k = 0; k < 200000; ++k) {
-        Vec3 P1 = P;
-        double w1 = w;
-        rk4(P1, w1, h);
-        smallest = std::min(smallest, (u0 + K * P1).head<2>().norm() / slip0);
-        if (smallest < 1e-7) return false;  // a stop, which τ never reaches
-        if (!ended(P1, w1)) {
-          P = P1, w = w1;
-          continue;
-        }
-        double lo = 0, hi = h;
-        for (int bisection = 0; bisection < 60; ++bisection) {
-          Vec3 Pm = P;
-          double wm = w;
-          rk4(Pm, wm, 0.5 * (lo + hi));
-          (ended(Pm, wm) ? hi : lo) = 0.5 * (lo + hi);
-        }
-        rk4(P, w, hi);
-        return true;
-      }
-      return false;
+      const auto each = [&](const Vec3& at) {
+        smallest = std::min(smallest, (u0 + K * at).head<2>().norm() / slip0);
+        return smallest >= 1e-7;  // below: a stop, which τ never reaches
+      };
+      return integrate_phase(rate, P, w, h, ended, each, 200000, 60);
     };
     if (!(slip0 > 0.5)) continue;
-    // A τ step: the slip changes at most |du_t/dτ| ≤ (|K_tn| + μ·‖K_tt‖)·|u_t|, so a tenth of a unit of that
-    // relative change over 200 steps (RK4: below 1e-9 of the impulse).
+    // A τ step: |du_t/dτ| ≤ (|K_tn| + μ·‖K_tt‖)·|u_t| = λ·|u_t|, and h = 1/(200·λ) changes the slip by at
+    // most 1/200 of itself (RK4: below 1e-9 of the impulse).
     const double lambda = K.block<2, 1>(0, 2).norm() + mu * K.topLeftCorner<2, 2>().norm();
     const double h = 1.0 / (200 * lambda);
     Vec3 P = Vec3::Zero();
