@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <optional>
 
@@ -18,6 +19,9 @@ namespace {
 constexpr int kMaxSweeps = 5000;
 // A sweep that changes no point's value by more than this fraction of the scale has converged.
 constexpr double kConverged = 1e-14;
+// A sweep that changes the values by no less than the one before, within this many ulps of the terms they
+// are summed from, has met round-off.
+constexpr double kRoundOff = 64 * std::numeric_limits<double>::epsilon();
 // Gauss–Seidel has diverged once a point's value exceeds this multiple of the scale (with sliding friction
 // and μ above about 1 the sweeps need not contract).
 constexpr double kDiverged = 1e12;
@@ -226,6 +230,7 @@ ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const V
   s.reactions.assign(n, Vec3::Zero());
   s.lin = lin;
   s.ang = ang;
+  double previous_change = INFINITY;
   for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
     std::vector<Vec3> at_start(n);
     for (std::size_t i = 0; i < n; ++i) at_start[i] = point_value(p, i, s.lin, s.ang);
@@ -238,14 +243,20 @@ ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const V
       s.ang += p.inverse_inertia * p.arms[i].cross(delta);
       s.reactions[i] = next;
     }
-    double change = 0, largest = 0;
+    double change = 0, largest = 0, round_off = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const Vec3 x = point_value(p, i, s.lin, s.ang);
       change = std::max(change, (x - at_start[i]).norm());
       largest = std::max(largest, x.norm());
+      round_off = std::max(round_off, s.lin.norm() + s.ang.norm() * p.arms[i].norm() +
+                                          (p.offsets.empty() ? 0.0 : p.offsets[i].norm()));
     }
     s.painleve = counts.painleve;
-    if (change <= kConverged * p.scale) {
+    // Converged: the change within the tolerance, or stalled at the values' round-off (a body whose points
+    // nearly rest while it turns: its velocities' round-off can exceed 1e-14 of the points' scale).
+    const bool stalled = change <= kRoundOff * round_off && change >= previous_change;
+    previous_change = change;
+    if (change <= kConverged * p.scale || stalled) {
       s.converged = counts.unresolved == 0;
       // A sliding point with no consistent force on its own may have one with the others (the whole LCP
       // decides Painlevé's case).

@@ -1,10 +1,17 @@
 // Lemke's method (lemke.hpp).
 #include "lemke.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
 namespace repose::sim {
+
+namespace {
+// The largest natural residual |min(z_i, w_i)| accepted, each relative to its vector's scale: round-off of
+// a well-posed tableau is ~1e-14; a pivot sequence that went astray leaves residuals of order one.
+constexpr double kResidual = 1e-9;
+}  // namespace
 
 std::optional<Eigen::VectorXd> solve_lcp(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, int max_pivots) {
   const Eigen::Index n = q.size();
@@ -75,6 +82,14 @@ std::optional<Eigen::VectorXd> solve_lcp(const Eigen::MatrixXd& M, const Eigen::
         const Eigen::Index b = basis[static_cast<std::size_t>(i)];
         if (b >= n && b < 2 * n) z(b - n) = std::max(T(i, values), 0.0);
       }
+      // The tableau's round-off grows with each pivot on a near-singular M (two points of an edge share a
+      // constraint): the answer is checked against M and q themselves, componentwise min(z, w) ≈ 0, w on
+      // the scale of the data q (a lost answer can have huge z whose M·z would hide a negative w).
+      const Eigen::VectorXd w = M * z + q;
+      const double z_scale = std::max(z.cwiseAbs().maxCoeff(), 1e-300);
+      const double w_scale = q.cwiseAbs().maxCoeff();
+      for (Eigen::Index i = 0; i < n; ++i)
+        if (std::abs(std::min(z(i) / z_scale, w(i) / w_scale)) > kResidual) return std::nullopt;
       return z;
     }
   }

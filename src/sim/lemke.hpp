@@ -14,7 +14,8 @@
 
 namespace repose::sim {
 
-/// z, or empty on a secondary ray or past `max_pivots` pivots.
+/// z, or empty on a secondary ray, past `max_pivots` pivots, or where z fails the check against M and q
+/// (|min(z_i, w_i)| within 1e-9 of the vectors' scales: a near-singular M's pivots can lose the answer).
 std::optional<Eigen::VectorXd> solve_lcp(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, int max_pivots);
 
 }  // namespace repose::sim

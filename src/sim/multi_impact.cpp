@@ -13,6 +13,9 @@ namespace {
 // Halvings of the restitution's normal impulses when Poisson's rule with friction would raise the energy
 // (after the last, none: the plastic impact alone).
 constexpr int kMaxScaleHalvings = 60;
+// The kinetic energy's round-off, relative: a compression that adds more than this has no exact solution's
+// property.
+constexpr double kEnergyRoundOff = 1e-12;
 }  // namespace
 
 MultiImpactOutcome collide_points(double mass, const Mat3& inertia, const std::vector<Vec3>& arms,
@@ -28,16 +31,26 @@ MultiImpactOutcome collide_points(double mass, const Mat3& inertia, const std::v
     problem.scale = std::max(problem.scale, point_value(problem, i, before.velocity, before.omega).norm());
 
   MultiImpactOutcome out;
-  // Compression: plastic, with Coulomb at every point.
-  const ContactSolution compression =
+  // Compression: plastic, with Coulomb at every point. Where no solution was reached (neither Gauss–Seidel
+  // nor Lemke's method), or one that would add kinetic energy (an exact one never does: ΔK = P·u⁺ − ½·Pᵀ·W·P
+  // with P·u⁺ = −Σ μ·λ_i·|u_t,i⁺| ≤ 0), the frictionless plastic impact instead, counted as not converged.
+  ContactSolution compression =
       solve_contacts(problem, before.velocity, before.omega, std::vector<PointCondition>(n));
+  const double energy_before = kinetic_energy(mass, inertia, before);
+  if (!compression.solved || kinetic_energy(mass, inertia, {compression.lin, compression.ang}) >
+                                 energy_before * (1 + kEnergyRoundOff)) {
+    ContactProblem frictionless = problem;
+    frictionless.friction = 0;
+    compression = solve_contacts(frictionless, before.velocity, before.omega, std::vector<PointCondition>(n));
+    compression.converged = false;
+  }
   out.converged = compression.converged;
   Motion after{compression.lin, compression.ang};
   std::vector<Vec3> total = compression.reactions;
   if (law.restitution > 0) {
     // Restitution: Poisson's at each point, friction within μ times it; never above the energy before the
     // impact: the normal impulses halved (and friction solved again) until so.
-    const double limit = kinetic_energy(mass, inertia, before);
+    const double limit = energy_before;
     std::vector<PointCondition> given(n);
     double scale = 1;
     for (int k = 0; k <= kMaxScaleHalvings; ++k, scale *= 0.5) {
