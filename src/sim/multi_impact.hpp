@@ -8,7 +8,8 @@
 // Poisson's at each point, E times its compression normal impulse, with friction again within μ times it;
 // should that raise the kinetic energy above what the body had before (friction and Poisson's rule can, in
 // rare configurations), the restitution's normal impulses are halved, with friction solved again, until it
-// does not.
+// does not. A compression without a solution, or one gaining kinetic energy (an exact one cannot), is the
+// frictionless plastic impact instead, flagged not converged.
 //
 // One point alone keeps Stronge's law (rigid_impact.hpp): along the impulse, exact. Several points get the
 // friction of each of them, which the impulses' centre cannot give: a spinning face landing flat loses spin
