@@ -129,6 +129,7 @@ Sample Engine::sample() const {
                           s.contact_count = c.contact_count();
                         },
                         [&](const FrictionalContact& c) {
+                          s.contact = c.contact_type();  // its first segment may not have begun yet
                           s.omega = c.omega();
                           s.contact_count = c.contact_count();
                           s.sticking = c.sticking();

@@ -30,6 +30,21 @@ bool has_line_phase(const SettleResult& r) {
   return false;
 }
 
+// The time series' first sample of a run started on the wall: the cube's four bottom corners on it, all
+// sliding when it is started sliding, all at rest when it is started still, the contact a surface (it used to
+// say free fall with no point, the frictional phase's first segment not having begun).
+TEST(FrictionalContact, FirstSampleOfAWallStartShowsItsPointsAndTheirModes) {
+  const Particle cube = load_particle("box:x=1,y=1,z=1", 1000.0);
+  for (const double v : {0.0, 1.5}) {
+    Settler settler(cube, sliding_start(Vec3(v, 0, 0), 0.5), Quat::Identity());
+    const Sample s = settler.sample();
+    EXPECT_EQ(s.contact, ContactType::surface) << v;
+    EXPECT_EQ(s.contact_count, 4) << v;
+    EXPECT_EQ(s.sliding, v > 0 ? 4 : 0) << v;
+    EXPECT_EQ(s.sticking, v > 0 ? 0 : 4) << v;
+  }
+}
+
 // A unit cube on its face, started on the wall sliding at v0 (the defect: it used to stop where it
 // started): it decelerates at μ·g and stops after v0²/(2μg) at t = v0/(μg), without turning. The
 // deceleration is constant, which Dormand–Prince integrates exactly; the stop is located where the slip

@@ -43,11 +43,40 @@ double FrictionalContact::kinetic_energy() const {
 
 bool FrictionalContact::stalled() const { return stalls_ >= 2 * kStalls; }
 
+std::pair<int, int> FrictionalContact::points_before_start() const {
+  const Run& run = run_;
+  int on = 0, slipping = 0;
+  for (const Vec3& v : run.particle.hull.vertices) {
+    const Vec3 arm = run.q * v;
+    if (run.com.z() + arm.z() > run.tol.frictional_band) continue;
+    ++on;
+    slipping += (velocity_ + omega_.cross(arm)).head<2>().norm() > run.tol.slip_speed;
+  }
+  return {on, slipping};
+}
+
+int FrictionalContact::contact_count() const {
+  return started_ ? static_cast<int>(active_.size()) : points_before_start().first;
+}
 int FrictionalContact::sticking() const {
+  if (!started_) {
+    const auto [on, slipping] = points_before_start();
+    return on - slipping;
+  }
   return static_cast<int>(std::count(forces_.modes.begin(), forces_.modes.end(), ContactMode::stick));
 }
 int FrictionalContact::sliding() const {
+  if (!started_) return points_before_start().second;
   return static_cast<int>(std::count(forces_.modes.begin(), forces_.modes.end(), ContactMode::slide));
+}
+
+ContactType FrictionalContact::contact_type() const {
+  if (started_) return run_.record.type();
+  const int n = contact_count();
+  return n == 0   ? ContactType::flight
+         : n == 1 ? ContactType::point
+         : n == 2 ? ContactType::line
+                  : ContactType::surface;
 }
 
 std::optional<RestPose> FrictionalContact::step() {

@@ -13,6 +13,7 @@
 
 #include <Eigen/Dense>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "../body_integrator.hpp"
@@ -38,9 +39,13 @@ class FrictionalContact {
   bool stalled() const;
   const Vec3& omega() const { return omega_; }
   double kinetic_energy() const;
-  int contact_count() const { return static_cast<int>(active_.size()); }
+  /// The points pressed on the wall and their modes, as of the current segment; before the first segment
+  /// (a run started on the wall, sampled at t = 0) the points within the band, sliding where they slip.
+  int contact_count() const;
   int sticking() const;
   int sliding() const;
+  /// The contact type by the points on the wall (flight when none).
+  ContactType contact_type() const;
 
  private:
   // The start of a segment at run.t: the pose projected onto the wall, the points on it classified, impacts
@@ -62,6 +67,8 @@ class FrictionalContact {
                           std::vector<PointCondition> conditions) const;
   // The first event in (a, b], or +∞.
   double locate_event(double a, double b);
+  // Before the first segment: the points within the band, and how many of them slip.
+  std::pair<int, int> points_before_start() const;
   void move_to(double t);
 
   Run& run_;
