@@ -22,14 +22,17 @@
 // docs/experiments.md). repose: restitution E and friction μ (its frictional contact phase after the
 // landing). Bullet: the body's restitution E and friction μ, the ground's 1 and 1 (Bullet multiplies the two
 // bodies' coefficients); Bullet's restitution is Newton's, equal to Stronge's E in a frictionless central
-// impact.
+// impact. Bullet's impacts slower than its restitution velocity threshold (btContactSolverInfo, 0.2 m/s) are
+// plastic; --match-threshold gives repose the same cut-off (SettleParams::restitution_threshold), which ends
+// the long cascade of small rebounds that E near 1 otherwise makes in repose.
 //
 // One thread for everything. Time per settle is steady_clock time over the N drops; for Bullet only the
 // drop's reset, its steps and the rest test are timed, not the penetration measurement (a scan of every hull
 // vertex after every step, which Bullet itself does not need).
 //
 // Run:  build/release/bench/peers/repose_peer_bullet [--drops N] [--seed S] [--only NAME[,NAME...]]
-//                                                    [--full-settle] [--bullet-no-sleep] [--bullet-damping]
+//                                                    [--full-settle] [--toss E,MU [--match-threshold]]
+//                                                    [--bullet-no-sleep] [--bullet-damping]
 //                                                    [--trace] [--no-histograms]   (--help: what they do)
 // Figures and discussion: docs/performance.md ("Against Bullet").
 #include <btBulletDynamicsCommon.h>
@@ -93,6 +96,9 @@ struct ReposeSide {
 struct TossOptions {
   bool active = false;
   double restitution = 0, friction = INFINITY;
+  // repose's restitution threshold (--match-threshold: Bullet's own restitution velocity threshold, below
+  // which Bullet's impacts are plastic; 0: repose's default, E at every speed).
+  double threshold = 0;
   static constexpr double kHeight = 4, kVelocity = 1.5, kSpin = 1.5;  // × L, sqrt(g·L), sqrt(g/L)
 };
 
@@ -107,6 +113,7 @@ ReposeSide prepare_repose(const repose::Particle& particle, bool full_settle, co
     const double L = particle.length;
     settings.params.restitution = toss.restitution;
     settings.params.friction = toss.friction;
+    settings.params.restitution_threshold = toss.threshold;
     settings.params.drop_height = TossOptions::kHeight * L;
     settings.toss.velocity_max = TossOptions::kVelocity * std::sqrt(kGravity * L);
     settings.toss.spin_max = TossOptions::kSpin * std::sqrt(kGravity / L);
@@ -382,7 +389,7 @@ int usage(const char* argv0, bool help = false) {
   std::fprintf(
       help ? stdout : stderr,
       "usage: %s [--drops N] [--seed S] [--only NAME[,NAME...]] [--full-settle] [--toss E,MU]\n"
-      "          [--bullet-no-sleep] [--bullet-damping] [--trace] [--no-histograms]\n"
+      "          [--match-threshold] [--bullet-no-sleep] [--bullet-damping] [--trace] [--no-histograms]\n"
       "  --drops N      drops per shape (default: per shape, a run of a few minutes)\n"
       "  --seed S       drop i starts at repose::drop_orientation(S, i) (default 1)\n"
       "  --only NAMES   comma-separated row names (cube, box123, tetrahedron, cylinder64, ellipsoid2000,\n"
@@ -390,6 +397,8 @@ int usage(const char* argv0, bool help = false) {
       "  --full-settle  time repose to rest (repose poses --full-settle) instead of its default\n"
       "  --toss E,MU    toss every drop from 4 L up (random speeds, docs/experiments.md's toss) with\n"
       "                 restitution E and friction MU (inf: no slip) in both engines\n"
+      "  --match-threshold  with --toss: repose's impacts below Bullet's restitution velocity threshold\n"
+      "                 (0.2 m/s) plastic too, as Bullet's are (default: repose's E at every speed)\n"
       "  --bullet-no-sleep  switch off Bullet's deactivation (default: on, Bullet's default)\n"
       "  --bullet-damping   give Bullet angular damping at repose's rate C/I (default: none, Bullet's "
       "default)\n"
@@ -431,6 +440,8 @@ int main(int argc, char** argv) {
       if (!(bullet_options.toss.restitution >= 0 && bullet_options.toss.restitution <= 1) ||
           !(bullet_options.toss.friction >= 0))
         return usage(argv[0]);
+    } else if (a == "--match-threshold") {
+      bullet_options.toss.threshold = btContactSolverInfo().m_restitutionVelocityThreshold;
     } else if (a == "--bullet-no-sleep") {
       bullet_options.sleep = false;
     } else if (a == "--bullet-damping") {
@@ -461,10 +472,12 @@ int main(int argc, char** argv) {
       btGetVersion(), sizeof(btScalar) == 8 ? "double" : "single", kDt, bullet_options.sleep ? "on" : "off",
       bullet_options.damping > 0 ? "repose's rate" : "none",
       full_settle ? "--full-settle" : "poses defaults (decide early)", static_cast<unsigned long long>(seed),
-      bullet_options.toss.active ? (", tossed: E " + std::to_string(bullet_options.toss.restitution) +
-                                    ", mu " + std::to_string(bullet_options.toss.friction))
-                                       .c_str()
-                                 : "");
+      bullet_options.toss.active
+          ? (", tossed: E " + std::to_string(bullet_options.toss.restitution) + ", mu " +
+             std::to_string(bullet_options.toss.friction) + ", repose's restitution threshold " +
+             std::to_string(bullet_options.toss.threshold) + " m/s")
+                .c_str()
+          : "");
   std::vector<Row> rows;
   try {
     for (const auto& [shape, default_drops] : shapes) {

@@ -35,8 +35,8 @@ def settle(particle, orientation="identity", *, sample_dt=None, **params):
     Keyword parameters are those of `repose settle`: damping (torque per angular velocity), integrator
     ("adaptive" or "paper"), dt, tolerance, contact_threshold and line_threshold (fractions of L and L²),
     smooth ("auto", "on", "off"), drop_height, drop_speed, velocity and spin ([x, y, z], world frame),
-    restitution, friction (None: no slip), max_time, max_steps, gravity. The time series is sampled every
-    `sample_dt` (default: 1e-3·sqrt(L/g) with the adaptive integrator, every step with the paper's).
+    restitution, friction (None: no slip), restitution_threshold, max_time, max_steps, gravity. The time
+    series is sampled every `sample_dt` (default: 1e-3·sqrt(L/g) with the adaptive integrator, every step with the paper's).
     Raises ValueError for bad input; Ctrl-C stops the run (KeyboardInterrupt)."""
     summary, series = _repose.settle(particle, orientation, float(sample_dt or 0), dict(params))
     return SettleResult(summary, series)

@@ -28,7 +28,7 @@ constexpr ParamRange kFinite{.text = "finite in every component"};
 
 // The order is --help's and the messages' (Python lists its keywords in it); study files and JSON echoes
 // sort their keys, so it does not change them.
-const std::array<ParamInfo, 18> kTable = {{
+const std::array<ParamInfo, 19> kTable = {{
     {.name = "gravity",
      .unit = "length/time^2",
      .member = &SettleParams::gravity,
@@ -137,6 +137,14 @@ const std::array<ParamInfo, 18> kTable = {{
      .help =
          "Coulomb's friction coefficient mu >= 0 at impacts and, after the landing, in the frictional "
          "contact phase (slip, stick and lift-off); inf: no slip, the paper's rotation (default {default})"},
+    {.name = "restitution_threshold",
+     .unit = "length/time",
+     .member = &SettleParams::restitution_threshold,
+     .range = kAtLeastZero,
+     .uses = kEverywhere | study_optional,  // older files: 0, E at every speed
+     .cli = CliGroup::impact,
+     .help = "Impacts slower than this normal approach speed ({unit}) are plastic, E = 0 (a cut-off like "
+             "Bullet's 0.2 m/s; default {default}: E at every speed)"},
     {.name = "max_time",
      .unit = "time",
      .member = &SettleParams::max_time,

@@ -125,9 +125,11 @@ TEST(ParamTable, CopyParamCopiesOnlyItsParameter) {
 }
 
 TEST(ParamTable, PythonKeywordsInTheirDocumentedOrder) {
-  EXPECT_EQ(param_names(in_python),
-            "gravity, damping, integrator, dt, tolerance, contact_threshold, line_threshold, smooth, "
-            "drop_height, drop_speed, velocity, spin, restitution, friction, max_time, max_steps");
+  EXPECT_EQ(
+      param_names(in_python),
+      "gravity, damping, integrator, dt, tolerance, contact_threshold, line_threshold, smooth, "
+      "drop_height, drop_speed, velocity, spin, restitution, friction, restitution_threshold, max_time, "
+      "max_steps");
 }
 
 }  // namespace

@@ -84,6 +84,38 @@ TEST(Rebound, ABallBouncesToTheGeometricSeriesOfApexesAndStopsAtItsSum) {
   EXPECT_LE(r.max_penetration, 1e-9 * ball.length);
 }
 
+// The restitution threshold (SettleParams::restitution_threshold): the same ball as above, E = 0.5 from
+// h = L, with a threshold v_t. Its n-th impact (n from 0) comes at e^n·v0, so the impacts at or above v_t
+// rebound, N = ⌊ln(v0/v_t)/ln(1/e)⌋ + 1 of them, and the next one is plastic: the bouncing ends at
+// t0·(1 + 2·(e + … + e^N)). Thresholds chosen half-way (in log) between two impact speeds, so that round-off
+// cannot move an impact across; the times as above, within 1e-9 of t0. Threshold 0: the whole series.
+TEST(Rebound, ImpactsBelowTheRestitutionThresholdArePlastic) {
+  const Particle ball = load_particle("ellipsoid:a=0.5,b=0.5,c=0.5,n=10", 1000.0);
+  const double e = 0.5, h = 1.0, v0 = v0_of(h), t0 = std::sqrt(2 * h / kG);
+  for (const int rebounds : {1, 3, 6}) {
+    SettleParams p;
+    p.drop_height = h;
+    p.restitution = e;
+    p.friction = 0;
+    p.restitution_threshold = v0 * std::pow(e, rebounds - 0.5);
+    const SettleResult r = settle(ball, p, vertex_down(ball, 0));
+    ASSERT_EQ(r.status, Status::rest);
+    ASSERT_GT(r.impacts.size(), static_cast<std::size_t>(rebounds)) << rebounds;
+    EXPECT_EQ(r.bounces, rebounds);
+    double t_expected = t0, e_n = 1;
+    for (int n = 0; n < rebounds; ++n) {
+      EXPECT_TRUE(r.impacts[static_cast<std::size_t>(n)].rebound) << n;
+      e_n *= e;
+      t_expected += 2 * t0 * e_n;
+    }
+    const ImpactRecord& last = r.impacts[static_cast<std::size_t>(rebounds)];
+    EXPECT_FALSE(last.rebound);
+    EXPECT_NEAR(last.normal_speed_before, -e_n * v0, 1e-9 * v0);
+    EXPECT_NEAR(last.normal_speed_after, 0, 1e-12 * v0);
+    EXPECT_NEAR(last.t, t_expected, 1e-9 * t0);
+  }
+}
+
 TEST(Rebound, ABoxDroppedFlatReboundsStraightUpWithoutTurning) {
   // Four corners land at once: the impulses' centre is below the centre of mass, so the box rebounds at E
   // times its landing speed with no rotation and no sideways motion (symmetry), with any friction.

@@ -83,6 +83,11 @@ struct SettleParams {
   /// horizontal velocity keeps the paper's touch (translation stops, rotation from rest).
   double restitution = 0.0;
   double friction = INFINITY;
+  /// Impacts slower than this are plastic (E = 0): the approach speed of the fastest point that strikes,
+  /// along the normal (length/time). A low-speed cut-off of restitution, as Bullet's restitution velocity
+  /// threshold (0.2 m/s) and Box2D's (1 m/s) have: it ends a lively body's cascade of ever smaller
+  /// rebounds. 0 (the default): E at every speed.
+  double restitution_threshold = 0.0;
   double max_time = 0.0;        ///< simulated-time limit (time); 0 = automatic: 2000·sqrt(L/g) + fall time
   long max_steps = 20'000'000;  ///< step limit
   double quaternion_tolerance = 1e-8;  ///< convergence of the pseudo-time iteration (Eqs 12-16)

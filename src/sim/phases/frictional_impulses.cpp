@@ -20,7 +20,8 @@ bool FrictionalContact::resolve_impacts() {
     fastest = std::max(fastest, -(velocity_ + omega_.cross(arm)).z());
   }
   if (fastest <= run.tol.speed) return false;
-  const ImpactLaw law{fastest > run.tol.separation_speed ? run.params.restitution : 0.0, run.params.friction};
+  const double elastic = std::max(run.tol.separation_speed, run.params.restitution_threshold);
+  const ImpactLaw law{fastest > elastic ? run.params.restitution : 0.0, run.params.friction};
   const Impact::Outcome out = Impact(run).resolve({velocity_, omega_}, arms, law, true);
   velocity_ = out.motion.velocity;
   omega_ = out.motion.omega;

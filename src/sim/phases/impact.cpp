@@ -47,6 +47,11 @@ Impact::Outcome Impact::resolve(const Motion& motion, const std::vector<Vec3>& a
     for (const Vec3& arm : arms_)
       if (normal_speed(arm) < -v_tol) approaching_.push_back(arm);
     if (approaching_.empty()) break;
+    // Restitution above the threshold only (SettleParams::restitution_threshold).
+    double fastest = 0;
+    for (const Vec3& arm : approaching_) fastest = std::max(fastest, -normal_speed(arm));
+    const ImpactLaw round_law{fastest < run.params.restitution_threshold ? 0.0 : law.restitution,
+                              law.friction};
     ImpactRecord record;
     record.t = run.t;
     record.points = static_cast<int>(approaching_.size());
@@ -55,7 +60,7 @@ Impact::Outcome Impact::resolve(const Motion& motion, const std::vector<Vec3>& a
     if (points > 1 && std::isfinite(law.friction)) {
       // Several points with finite friction: Coulomb at each of them (multi_impact.hpp), over every point on
       // the wall (one not approaching takes an impulse only if the others' push it into the wall).
-      const MultiImpactOutcome out = collide_points(body.mass, inertia, arms_, m, law);
+      const MultiImpactOutcome out = collide_points(body.mass, inertia, arms_, m, round_law);
       Vec3 centre = Vec3::Zero();
       double total = 0;
       bool stick = true;
@@ -81,7 +86,7 @@ Impact::Outcome Impact::resolve(const Motion& motion, const std::vector<Vec3>& a
                                              ? std::optional<Vec3>(approaching_[0])
                                              : impulse_centre(body.mass, inertia, approaching_, m);
       if (!centre) break;
-      const ImpactOutcome out = collide(body.mass, inertia, *centre, m, law);
+      const ImpactOutcome out = collide(body.mass, inertia, *centre, m, round_law);
       record.point = run.com + *centre;
       record.normal_speed_before = out.speed_before.z();
       record.normal_speed_after = out.speed_after.z();
