@@ -88,7 +88,7 @@ std::optional<Eigen::VectorXd> solve_lcp(const Eigen::MatrixXd& M, const Eigen::
       const Eigen::VectorXd w = M * z + q;
       const double z_scale = std::max(z.cwiseAbs().maxCoeff(), 1e-300);
       const double w_scale = q.cwiseAbs().maxCoeff();
-      for (Eigen::Index i = 1; i < n; ++i)
+      for (Eigen::Index i = 0; i < n; ++i)
         if (std::abs(std::min(z(i) / z_scale, w(i) / w_scale)) > kResidual) return std::nullopt;
       return z;
     }

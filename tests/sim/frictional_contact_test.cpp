@@ -9,6 +9,7 @@
 #include <repose/poses/sampling.hpp>
 #include <repose/sim/settle.hpp>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace repose {
@@ -42,6 +43,17 @@ TEST(FrictionalContact, FirstSampleOfAWallStartShowsItsPointsAndTheirModes) {
     EXPECT_EQ(s.contact_count, 4) << v;
     EXPECT_EQ(s.sliding, v > 0 ? 4 : 0) << v;
     EXPECT_EQ(s.sticking, v > 0 ? 0 : 4) << v;
+  }
+  // On an edge (turned 45° about x): its two corners, a line; on a corner (its diagonal vertical): a point.
+  const Quat edge(Eigen::AngleAxisd(kPi / 4, Vec3::UnitX()));
+  const Quat corner = Quat::FromTwoVectors(Vec3(-1, -1, -1).normalized(), -Vec3::UnitZ());
+  for (const auto& [q, type, count] :
+       {std::tuple{edge, ContactType::line, 2}, {corner, ContactType::point, 1}}) {
+    Settler settler(cube, sliding_start(Vec3::Zero(), 0.5), q);
+    const Sample s = settler.sample();
+    EXPECT_EQ(s.contact, type) << count;
+    EXPECT_EQ(s.contact_count, count);
+    EXPECT_EQ(s.sticking, count);
   }
 }
 
