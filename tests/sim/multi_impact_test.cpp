@@ -13,6 +13,14 @@ namespace {
 
 const Mat3 kCubeInertia = Mat3::Identity() / 6;
 
+// An asymmetric body's inertia about its centre of mass (principal moments 0.05 to 1.05), turned at random.
+Mat3 random_inertia(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(-1, 1), unit(0, 1);
+  const Vec3 moments(0.05 + unit(rng), 0.05 + unit(rng), 0.05 + unit(rng));
+  const Mat3 R = Quat(Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
+  return R * moments.asDiagonal() * R.transpose();
+}
+
 std::vector<Vec3> bottom_corners() {
   std::vector<Vec3> corners;
   for (double x : {-0.5, 0.5})
@@ -106,9 +114,7 @@ TEST(MultiImpact, RestitutionFrictionOpposesTheFinalSlip) {
   std::uniform_real_distribution<double> u(-1, 1), unit(0, 1);
   int checked = 0;
   for (int k = 0; k < 500 && checked < 100; ++k) {
-    const Vec3 moments(0.05 + unit(rng), 0.05 + unit(rng), 0.05 + unit(rng));
-    const Mat3 R = Quat(Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
-    const Mat3 inertia = R * moments.asDiagonal() * R.transpose();
+    const Mat3 inertia = random_inertia(rng);
     const std::vector<Vec3> arm = {Vec3(u(rng), u(rng), -0.1 - unit(rng))};
     const Motion before{Vec3(3 * u(rng), 3 * u(rng), -1 - unit(rng)), Vec3(u(rng), u(rng), u(rng))};
     const double mu = 0.05 + 0.3 * unit(rng), e = 0.3 + 0.6 * unit(rng);
@@ -133,9 +139,7 @@ TEST(MultiImpact, NoMultiPointImpactCreatesEnergy) {
   std::mt19937_64 rng(99);
   std::uniform_real_distribution<double> u(-1, 1), unit(0, 1);
   for (int k = 0; k < 2000; ++k) {
-    const Vec3 moments(0.05 + unit(rng), 0.05 + unit(rng), 0.05 + unit(rng));
-    const Mat3 R = Quat(Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
-    const Mat3 inertia = R * moments.asDiagonal() * R.transpose();
+    const Mat3 inertia = random_inertia(rng);
     const double m = 0.3 + unit(rng), e = k % 2 ? 0.0 : unit(rng), mu = 2 * unit(rng);
     const double depth = -0.1 - unit(rng);
     std::vector<Vec3> arms(2 + k % 7);
@@ -168,9 +172,7 @@ TEST(MultiImpact, PointsNearlyAtRestOnATurningBodyEndAsMoreausImpact) {
   std::mt19937_64 rng(34);
   std::uniform_real_distribution<double> u(-1, 1), unit(0, 1);
   for (int k = 0; k < 2000; ++k) {
-    const Vec3 moments(0.05 + unit(rng), 0.05 + unit(rng), 0.05 + unit(rng));
-    const Mat3 R = Quat(Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
-    const Mat3 inertia = R * moments.asDiagonal() * R.transpose();
+    const Mat3 inertia = random_inertia(rng);
     const double m = 0.3 + unit(rng), mu = 0.2 + 1.8 * unit(rng);
     const double depth = -0.1 - unit(rng);
     // Two to four points of a short edge or a small facet near the first one.
