@@ -20,6 +20,13 @@ constexpr int kStalls = 8;
 constexpr int kTipOffs = 8;
 
 Motion motion_of(const BodyState& s) { return {s.velocity, s.omega}; }
+// The contact type by the number of points on the wall (flight when none).
+ContactType type_of(int points) {
+  return points == 0   ? ContactType::flight
+         : points == 1 ? ContactType::point
+         : points == 2 ? ContactType::line
+                       : ContactType::surface;
+}
 }  // namespace
 
 FrictionalContact::FrictionalContact(Run& run, const Motion& motion)
@@ -67,11 +74,7 @@ int FrictionalContact::sliding() const {
 
 ContactType FrictionalContact::contact_type() const {
   if (started_) return run_.record.type();
-  const int n = contact_count();
-  return n == 0   ? ContactType::flight
-         : n == 1 ? ContactType::point
-         : n == 2 ? ContactType::line
-                  : ContactType::surface;
+  return type_of(contact_count());
 }
 
 std::optional<RestPose> FrictionalContact::step() {
@@ -171,18 +174,13 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
     forces_ = forces_at({run.com, velocity_, run.q, omega_});
   }
   hold_resting_points();
-  // The contact type by the points on the wall (flight when none).
   const std::size_t n = active_.size();
   if (run.trace)
     std::fprintf(stderr,
                  "t=%.12g frictional points=%zu stick=%d slide=%d painleve=%d v=%g,%g,%g omega=%g,%g,%g\n",
                  run.t, n, sticking(), sliding(), run.record.painleve, velocity_.x(), velocity_.y(),
                  velocity_.z(), omega_.x(), omega_.y(), omega_.z());
-  run.record.set_type(n == 0   ? ContactType::flight
-                      : n == 1 ? ContactType::point
-                      : n == 2 ? ContactType::line
-                               : ContactType::surface,
-                      run.t);
+  run.record.set_type(type_of(static_cast<int>(n)), run.t);
   // Rest: on the wall with too little energy to lift it out of the band (a rocking block's impacts would
   // otherwise accumulate without end, as Housner's do), nothing accelerating with the velocities at zero,
   // over a stable face. The energy dropped is at most m·g·band.
