@@ -151,9 +151,18 @@ Row run_shape(const Shape& shape, std::uint64_t drops, std::uint64_t seed, bool 
   for (const repose::RestPose& p : catalog.poses) row.pose_normals.push_back(p.down_normal_body);
 
   std::vector<int> repose_pose(drops);
+  std::vector<double> repose_drop_seconds(drops);  // for --trace only (the row's time is the whole loop's)
+  std::vector<long> repose_steps(drops);
   const auto t0 = Clock::now();
-  for (std::uint64_t i = 0; i < drops; ++i)
-    repose_pose[i] = repose::simulate_drop(particle, rs.landscape, catalog, rs.options, i).pose;
+  for (std::uint64_t i = 0; i < drops; ++i) {
+    const auto t_drop = trace ? Clock::now() : t0;
+    const repose::DropOutcome outcome = repose::simulate_drop(particle, rs.landscape, catalog, rs.options, i);
+    repose_pose[i] = outcome.pose;
+    if (trace) {
+      repose_drop_seconds[i] = std::chrono::duration<double>(Clock::now() - t_drop).count();
+      repose_steps[i] = outcome.steps;
+    }
+  }
   row.repose_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
 
   for (std::uint64_t i = 0; i < drops; ++i) {
@@ -172,9 +181,10 @@ Row run_shape(const Shape& shape, std::uint64_t drops, std::uint64_t seed, bool 
     if (trace)
       std::fprintf(
           stderr,
-          "  drop %llu: repose pose %d; Bullet pose %d, %s at %.3f s, face %d (stability margin %.3g L) "
-          "at %.3g rad\n",
-          static_cast<unsigned long long>(i), repose_pose[i], pose,
+          "  drop %llu: repose pose %d (%.3g ms, %ld steps); Bullet pose %d (%.3g ms), %s at %.3f s, face %d "
+          "(stability margin %.3g L) at %.3g rad\n",
+          static_cast<unsigned long long>(i), repose_pose[i], 1e3 * repose_drop_seconds[i], repose_steps[i],
+          pose, 1e3 * d.seconds,
           d.slept    ? "asleep"
           : d.rested ? "at rest"
                      : "NO REST",
@@ -238,7 +248,7 @@ int usage(const char* argv0, bool help = false) {
       "  --bullet-no-sleep  switch off Bullet's deactivation (default: on, Bullet's default)\n"
       "  --bullet-damping   give Bullet angular damping at repose's rate C/I (default: none, Bullet's "
       "default)\n"
-      "  --trace        one line per drop on stderr: both poses, how Bullet's run ended, its final face\n"
+      "  --trace        one line per drop on stderr: both poses and times, how Bullet's run ended, its final face\n"
       "  --no-histograms  only the table\n",
       argv0);
   return help ? 0 : 2;

@@ -22,6 +22,12 @@ constexpr double kConverged = 1e-14;
 // A sweep that changes the values by no less than the one before, within this many ulps of the terms they
 // are summed from, has met round-off.
 constexpr double kRoundOff = 64 * std::numeric_limits<double>::epsilon();
+// Newton's method polishes the reactions (contact_newton.cpp) where after this many sweeps they still
+// contract by less than kSlowSweep a sweep, and again after twice as many more each time it did not end
+// them: most problems converge within 30 sweeps, but an edge at the limit of its friction cone can take
+// thousands.
+constexpr int kSweepsBeforeNewton = 10;
+constexpr double kSlowSweep = 0.2;
 // Gauss–Seidel has diverged once a point's value exceeds this multiple of the scale (with sliding friction
 // and μ above about 1 the sweeps need not contract).
 constexpr double kDiverged = 1e12;
@@ -231,6 +237,7 @@ ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const V
   s.lin = lin;
   s.ang = ang;
   double previous_change = INFINITY;
+  int next_polish = kSweepsBeforeNewton;
   for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
     std::vector<Vec3> at_start(n);
     for (std::size_t i = 0; i < n; ++i) at_start[i] = point_value(p, i, s.lin, s.ang);
@@ -255,6 +262,7 @@ ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const V
     // Converged: the change within the tolerance, or stalled at the values' round-off (a body whose points
     // nearly rest while it turns: its velocities' round-off can exceed 1e-14 of the points' scale).
     const bool stalled = change <= kRoundOff * round_off && change >= previous_change;
+    const bool slow = change > kSlowSweep * previous_change;
     previous_change = change;
     if (change <= kConverged * p.scale || stalled) {
       s.converged = counts.unresolved == 0;
@@ -265,6 +273,20 @@ ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const V
       return s;
     }
     if (!(largest <= kDiverged * p.scale)) break;  // diverging (or not finite)
+    if (slow && sweep + 1 >= next_polish && counts.painleve == 0 && counts.unresolved == 0) {
+      next_polish = 2 * (sweep + 1);
+      // Polished by Newton's method; the sweeps' own test then accepts the result or sweeps on from it.
+      if (auto newton = solve_contacts_by_newton(p, lin, ang, conditions, s.reactions)) {
+        s.reactions = *newton;
+        s.lin = lin;
+        s.ang = ang;
+        for (std::size_t i = 0; i < n; ++i) {
+          s.lin += s.reactions[i] / p.mass;
+          s.ang += p.inverse_inertia * p.arms[i].cross(s.reactions[i]);
+        }
+        previous_change = INFINITY;
+      }
+    }
   }
   if (auto pivoted = solve_contacts_by_pivoting(p, lin, ang, conditions)) return *pivoted;
   s.converged = false;

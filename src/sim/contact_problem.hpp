@@ -66,6 +66,14 @@ std::optional<ContactSolution> solve_contacts_by_pivoting(const ContactProblem& 
                                                           const Vec3& ang,
                                                           const std::vector<PointCondition>& conditions);
 
+/// Newton's method on the problem's Alart–Curnier equations from the reactions `start` (solve_contacts'
+/// polish where Gauss–Seidel creeps): the reactions it reached, a solution or the best it found. Empty where
+/// the data are not finite.
+std::optional<std::vector<Vec3>> solve_contacts_by_newton(const ContactProblem& problem, const Vec3& lin,
+                                                          const Vec3& ang,
+                                                          const std::vector<PointCondition>& conditions,
+                                                          const std::vector<Vec3>& start);
+
 /// The Delassus block of a point r from the centre of mass: a unit reaction at r changes that point's
 /// velocity (or acceleration) by K·R, K = 1/m − [r]× I⁻¹ [r]×.
 Mat3 delassus_block(double mass, const Mat3& inverse_inertia, const Vec3& r);
