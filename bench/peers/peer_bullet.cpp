@@ -248,7 +248,8 @@ int usage(const char* argv0, bool help = false) {
       "  --bullet-no-sleep  switch off Bullet's deactivation (default: on, Bullet's default)\n"
       "  --bullet-damping   give Bullet angular damping at repose's rate C/I (default: none, Bullet's "
       "default)\n"
-      "  --trace        one line per drop on stderr: both poses and times, how Bullet's run ended, its final face\n"
+      "  --trace        one line per drop on stderr: both poses and times, how Bullet's run ended, its final "
+      "face\n"
       "  --no-histograms  only the table\n",
       argv0);
   return help ? 0 : 2;

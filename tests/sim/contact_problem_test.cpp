@@ -15,8 +15,8 @@ namespace repose::sim {
 namespace {
 
 // Coulomb's law and complementarity at every point of a solution for unilateral points, within `tol` of the
-// problem's scale (values) and of mass·scale (reactions); the body's velocities recomputed from the reactions.
-// Returns the first violation, empty if none.
+// problem's scale (values) and of mass·scale (reactions); the body's velocities recomputed from the
+// reactions. Returns the first violation, empty if none.
 std::string coulomb_violation(const ContactProblem& p, const Vec3& lin, const Vec3& ang,
                               const ContactSolution& s, double tol) {
   Vec3 body_lin = lin, body_ang = ang;
