@@ -2,7 +2,6 @@
 #include "contact_problem.hpp"
 
 #include <algorithm>
-#include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -49,6 +48,40 @@ struct Counts {
   int unresolved = 0;
 };
 
+// The root of φ(β) = |p(β)| − μ·λ(p(β)) in [lo, hi] (φ(lo) > 0 > φ(hi)), p(β) = (A + β·I)⁻¹·b, λ(p) = c0 +
+// c·p: Newton's method on ψ(β) = 1/|p(β)| − 1/(μ·λ(p(β))), which has the same root and is nearly linear in β
+// (exactly where A is a multiple of I and c = 0: Reinsch 1971, Moré & Sorensen 1983), kept inside the
+// bracket, which each iterate narrows by the sign of φ; a step that would leave it, or not halve the step
+// before, bisects instead (Numerical Recipes' rtsafe). Stops at |φ| within 4 ulps of its terms or a bracket
+// of 2 ulps.
+double secular_root(const Eigen::Matrix2d& A, const Vec2& b, double c0, const Vec2& c, double mu, double lo,
+                    double hi) {
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  double beta = lo, step_before = hi - lo;
+  for (int k = 0; k < 200; ++k) {
+    const double a = A(0, 0) + beta, d = A(1, 1) + beta, off = A(0, 1), det = a * d - off * off;
+    const auto solve = [&](const Vec2& v) -> Vec2 {
+      return Vec2(d * v.x() - off * v.y(), a * v.y() - off * v.x()) / det;
+    };
+    const Vec2 p = solve(b), dp = -solve(p);
+    const double norm = p.norm(), lambda = c0 + c.dot(p), phi = norm - mu * lambda;
+    if (std::abs(phi) <= 4 * eps * (norm + mu * std::abs(lambda))) return beta;  // a root to round-off
+    (phi > 0 ? lo : hi) = beta;
+    if (hi - lo <= 2 * eps * hi) break;
+    // Newton's step where it stays inside the bracket and at least halves the step before (rtsafe).
+    double next = 0.5 * (lo + hi);
+    if (norm > 0 && lambda > 0) {
+      const double psi = 1 / norm - 1 / (mu * lambda);
+      const double slope = -p.dot(dp) / (norm * norm * norm) + c.dot(dp) / (mu * lambda * lambda);
+      const double newton = beta - psi / slope;
+      if (newton > lo && newton < hi && 2 * std::abs(newton - beta) <= step_before) next = newton;
+    }
+    step_before = std::abs(next - beta);
+    beta = next;
+  }
+  return 0.5 * (lo + hi);
+}
+
 // The sliding reaction R = (−p, λ) of one point, p = μ·λ·ŝ, with the slip after it, x_t = b − A·p, along ŝ
 // (friction opposes the slip). Along ŝ means b − A·p = β·p for some β ≥ 0, so p(β) = (A + β·I)⁻¹·b, and the
 // reaction is on the cone's edge, |p| = μ·λ(p) with λ(p) = c0 + c·p: a root in β of the secular equation
@@ -57,9 +90,9 @@ struct Counts {
 //                         b = f_t − w_tn·f_n/W_nn, λ(p) = (w_nt·p − f_n)/W_nn;
 //   given normal λ:       A = W_tt, b = f_t + λ·w_tn, λ(p) = λ.
 // Called where sticking (β = 0) is outside the cone, φ(0) > 0; as β → ∞, p → 0 and φ → −μ·λ(0) < 0: a root
-// exists. The bracket is found by halving or doubling β from the scale trace(A) and closed by TOMS 748
-// (Alefeld, Potra & Shi 1995). Where φ has several roots (Painlevé's non-uniqueness at a point at rest) the
-// one found this way is taken. Empty only when the data are not finite.
+// exists. The bracket is found by halving or doubling β from the scale trace(A) and closed by secular_root.
+// Where φ has several roots (Painlevé's non-uniqueness at a point at rest) the one found this way is taken.
+// Empty only when the data are not finite.
 std::optional<Vec3> sliding_reaction(const Mat3& W, const Vec3& f, double mu, double given_normal) {
   const bool unilateral = given_normal < 0;
   const Vec2 wtn = W.block<2, 1>(0, 2), wnt = W.block<1, 2>(2, 0).transpose();
@@ -94,12 +127,7 @@ std::optional<Vec3> sliding_reaction(const Mat3& W, const Vec3& f, double mu, do
   const double f_lo = phi(lo), f_hi = phi(hi);
   if (!(f_lo > 0) || f_hi > 0) return std::nullopt;
   double beta = hi;
-  if (f_hi < 0) {
-    std::uintmax_t iterations = 200;
-    const auto root = boost::math::tools::toms748_solve(
-        phi, lo, hi, f_lo, f_hi, boost::math::tools::eps_tolerance<double>(52), iterations);
-    beta = 0.5 * (root.first + root.second);
-  }
+  if (f_hi < 0) beta = secular_root(A, b, c0, c, mu, lo, hi);
   const Vec2 p = p_of(beta);
   if (!(p.norm() > 0)) return Vec3(0, 0, c0);
   const Vec2 s = p.normalized();
