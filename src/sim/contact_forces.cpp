@@ -21,7 +21,8 @@ ContactForces contact_forces(const ContactBody& body, const Motion& motion, cons
 }
 
 ContactForces contact_forces(const ContactBody& body, const Motion& motion, const std::vector<Vec3>& arms,
-                             double friction, const std::vector<PointCondition>& conditions) {
+                             double friction, const std::vector<PointCondition>& conditions,
+                             const std::vector<Vec3>* start) {
   if (auto face = sliding_face(body, motion, arms, friction, conditions)) return *face;
   const std::size_t n = arms.size();
   const Vec3& w = motion.omega;
@@ -39,7 +40,7 @@ ContactForces contact_forces(const ContactBody& body, const Motion& motion, cons
     problem.offsets[i] = w.cross(w.cross(arms[i]));  // centripetal
     problem.scale = std::max(problem.scale, point_value(problem, i, lin, ang).norm());
   }
-  ContactSolution s = solve_contacts(problem, lin, ang, conditions);
+  ContactSolution s = solve_contacts(problem, lin, ang, conditions, start);
   // No solution reached (Gauss–Seidel diverged and Lemke's method ended on a ray): no contact force, and
   // every sliding point driven into the wall is Painlevé's inconsistent case (below), resolved by the phase.
   const bool solved = s.solved;

@@ -44,6 +44,7 @@ ContactForces contact_forces(const ContactBody& body, const Motion& motion, cons
 /// The same with each point's rule given (an event-driven phase keeps them between its events): `sliding`
 /// with its direction, or `unilateral` (at rest on the wall: it sticks or starts to slide).
 ContactForces contact_forces(const ContactBody& body, const Motion& motion, const std::vector<Vec3>& arms,
-                             double friction, const std::vector<PointCondition>& conditions);
+                             double friction, const std::vector<PointCondition>& conditions,
+                             const std::vector<Vec3>* start = nullptr);
 
 }  // namespace repose::sim

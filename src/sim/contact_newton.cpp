@@ -11,6 +11,7 @@
 // x_n = 0; R_t strictly inside the disk only where x_t = 0, and on its edge opposite to x_t otherwise.
 #include <Eigen/Dense>
 #include <cmath>
+#include <limits>
 
 #include "contact_problem.hpp"
 
@@ -23,25 +24,32 @@ namespace {
 constexpr int kMaxNewtonSteps = 30;
 constexpr int kMaxHalvings = 40;
 
+// Up to kSmall points the matrices live on the stack (a face's corners, an edge: no allocation per step).
+constexpr int kSmall = 8;
+using SmallMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3 * kSmall, 3 * kSmall>;
+using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kSmall, 1>;
+
+template <class Matrix, class Vector>
 struct Residual {
-  Eigen::VectorXd phi;  // R − F(R), zero at a solution
-  Eigen::MatrixXd jacobian;
+  Vector phi;  // R − F(R), zero at a solution
+  Matrix jacobian;
 };
 
 // The residual of the equations above at R, and (with_jacobian) an element of its generalized Jacobian.
-Residual residual(const Eigen::MatrixXd& W, const Eigen::VectorXd& x0, const Eigen::VectorXd& R,
-                  const Eigen::VectorXd& rho, double mu, const std::vector<PointCondition>& conditions,
-                  bool with_jacobian) {
+template <class Matrix, class Vector>
+Residual<Matrix, Vector> residual(const Matrix& W, const Vector& x0, const Vector& R, const Vector& rho,
+                                  double mu, const std::vector<PointCondition>& conditions,
+                                  bool with_jacobian) {
   const Eigen::Index n = static_cast<Eigen::Index>(conditions.size());
-  const Eigen::VectorXd x = x0 + W * R;
-  Residual out;
+  const Vector x = x0 + W * R;
+  Residual<Matrix, Vector> out;
   out.phi.resize(3 * n);
   // dF/dR = D·(E − ρ·W), D block-diagonal: each point's derivative of F_i with respect to its own y_i.
-  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(3 * n, 3 * n);
+  Matrix D = Matrix::Zero(3 * n, 3 * n);
   for (Eigen::Index i = 0; i < n; ++i) {
     const PointCondition& c = conditions[static_cast<std::size_t>(i)];
-    const Vec3 r = R.segment<3>(3 * i);
-    const Vec3 y = r - rho(i) * x.segment<3>(3 * i);
+    const Vec3 r = R.template segment<3>(3 * i);
+    const Vec3 y = r - rho(i) * x.template segment<3>(3 * i);
     const bool pressed = y.z() > 0;
     Vec3 F = Vec3::Zero();
     Mat3 dF = Mat3::Zero();
@@ -67,54 +75,55 @@ Residual residual(const Eigen::MatrixXd& W, const Eigen::VectorXd& x0, const Eig
         if (c.rule == PointRule::unilateral && pressed) dF.block<2, 1>(0, 2) = mu * u;
       }
     }
-    out.phi.segment<3>(3 * i) = r - F;
-    D.block<3, 3>(3 * i, 3 * i) = dF;
+    out.phi.template segment<3>(3 * i) = r - F;
+    D.template block<3, 3>(3 * i, 3 * i) = dF;
   }
   if (with_jacobian) {
-    Eigen::MatrixXd dy = -W;
-    for (Eigen::Index i = 0; i < n; ++i) dy.middleRows<3>(3 * i) *= rho(i);
-    dy += Eigen::MatrixXd::Identity(3 * n, 3 * n);
-    out.jacobian = Eigen::MatrixXd::Identity(3 * n, 3 * n) - D * dy;
+    Matrix dy = -W;
+    for (Eigen::Index i = 0; i < n; ++i) dy.template middleRows<3>(3 * i) *= rho(i);
+    dy += Matrix::Identity(3 * n, 3 * n);
+    out.jacobian = Matrix::Identity(3 * n, 3 * n) - D * dy;
   }
   return out;
 }
 
-}  // namespace
-
-std::optional<std::vector<Vec3>> solve_contacts_by_newton(const ContactProblem& p, const Vec3& lin,
-                                                          const Vec3& ang,
-                                                          const std::vector<PointCondition>& conditions,
-                                                          const std::vector<Vec3>& start) {
+template <class Matrix, class Vector>
+std::optional<std::vector<Vec3>> newton(const ContactProblem& p, const Vec3& lin, const Vec3& ang,
+                                        const std::vector<PointCondition>& conditions,
+                                        const std::vector<Vec3>& start) {
   const std::size_t n = p.arms.size();
   const Eigen::Index size = static_cast<Eigen::Index>(3 * n);
-  Eigen::MatrixXd W(size, size);
-  Eigen::VectorXd x0(size), R(size), rho(static_cast<Eigen::Index>(n));
+  Matrix W(size, size);
+  Vector x0(size), R(size), rho(static_cast<Eigen::Index>(n));
   for (std::size_t i = 0; i < n; ++i) {
     const auto I = static_cast<Eigen::Index>(3 * i);
     for (std::size_t j = 0; j < n; ++j)
-      W.block<3, 3>(I, static_cast<Eigen::Index>(3 * j)) =
+      W.template block<3, 3>(I, static_cast<Eigen::Index>(3 * j)) =
           delassus_block(p.mass, p.inverse_inertia, p.arms[i], p.arms[j]);
-    x0.segment<3>(I) = point_value(p, i, lin, ang);
-    R.segment<3>(I) = start[i];
+    x0.template segment<3>(I) = point_value(p, i, lin, ang);
+    R.template segment<3>(I) = start[i];
     // ρ of the order of the point's own compliance's inverse: the equations' two terms then weigh alike.
-    rho(static_cast<Eigen::Index>(i)) = 3 / W.block<3, 3>(I, I).trace();
+    rho(static_cast<Eigen::Index>(i)) = 3 / W.template block<3, 3>(I, I).trace();
   }
   if (!W.allFinite() || !x0.allFinite() || !R.allFinite()) return std::nullopt;
-  // Round-off of the residual: the reactions' and the values' scales (R and ρ·x enter it alike).
-  const double force_scale = R.lpNorm<Eigen::Infinity>() + (rho.maxCoeff() * p.scale);
-  const double tolerance = 1e-15 * force_scale;
-  Residual at = residual(W, x0, R, rho, p.friction, conditions, true);
+  // Round-off of the residual: the reactions' and the values' scales (R and ρ·x enter it alike), times the
+  // terms summed in W·R.
+  const double force_scale = R.template lpNorm<Eigen::Infinity>() + (rho.maxCoeff() * p.scale);
+  const double tolerance =
+      4 * std::numeric_limits<double>::epsilon() * static_cast<double>(size) * force_scale;
+  Residual<Matrix, Vector> at = residual(W, x0, R, rho, p.friction, conditions, true);
   double merit = at.phi.squaredNorm();
   for (int step = 0; step < kMaxNewtonSteps; ++step) {
-    if (at.phi.lpNorm<Eigen::Infinity>() <= tolerance) break;
+    if (at.phi.template lpNorm<Eigen::Infinity>() <= tolerance) break;
     // The Jacobian is singular where the reactions are not determined (an edge's two points along it):
     // the least-norm step.
-    const Eigen::VectorXd d = at.jacobian.completeOrthogonalDecomposition().solve(-at.phi);
+    const Vector d = at.jacobian.completeOrthogonalDecomposition().solve(-at.phi);
     if (!d.allFinite()) return std::nullopt;
     double alpha = 1;
     bool decreased = false;
     for (int h = 0; h < kMaxHalvings; ++h, alpha *= 0.5) {
-      Residual trial = residual(W, x0, R + alpha * d, rho, p.friction, conditions, false);
+      const Residual<Matrix, Vector> trial =
+          residual<Matrix, Vector>(W, x0, R + alpha * d, rho, p.friction, conditions, false);
       if (trial.phi.squaredNorm() < merit) {
         R += alpha * d;
         decreased = true;
@@ -126,8 +135,18 @@ std::optional<std::vector<Vec3>> solve_contacts_by_newton(const ContactProblem& 
     merit = at.phi.squaredNorm();
   }
   std::vector<Vec3> reactions(n);
-  for (std::size_t i = 0; i < n; ++i) reactions[i] = R.segment<3>(static_cast<Eigen::Index>(3 * i));
+  for (std::size_t i = 0; i < n; ++i) reactions[i] = R.template segment<3>(static_cast<Eigen::Index>(3 * i));
   return reactions;
+}
+
+}  // namespace
+
+std::optional<std::vector<Vec3>> solve_contacts_by_newton(const ContactProblem& p, const Vec3& lin,
+                                                          const Vec3& ang,
+                                                          const std::vector<PointCondition>& conditions,
+                                                          const std::vector<Vec3>& start) {
+  if (p.arms.size() <= kSmall) return newton<SmallMatrix, SmallVector>(p, lin, ang, conditions, start);
+  return newton<Eigen::MatrixXd, Eigen::VectorXd>(p, lin, ang, conditions, start);
 }
 
 }  // namespace repose::sim

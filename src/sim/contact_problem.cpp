@@ -256,7 +256,8 @@ std::optional<ContactSolution> solve_contacts_by_pivoting(const ContactProblem& 
 }
 
 ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const Vec3& ang,
-                               const std::vector<PointCondition>& conditions) {
+                               const std::vector<PointCondition>& conditions,
+                               const std::vector<Vec3>* start) {
   const std::size_t n = p.arms.size();
   std::vector<Mat3> diagonal(n);
   for (std::size_t i = 0; i < n; ++i) diagonal[i] = delassus_block(p.mass, p.inverse_inertia, p.arms[i]);
@@ -264,6 +265,15 @@ ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const V
   s.reactions.assign(n, Vec3::Zero());
   s.lin = lin;
   s.ang = ang;
+  if (start && start->size() == n) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3& r = (*start)[i];
+      if (!r.allFinite()) continue;
+      s.reactions[i] = r;
+      s.lin += r / p.mass;
+      s.ang += p.inverse_inertia * p.arms[i].cross(r);
+    }
+  }
   double previous_change = INFINITY;
   int next_polish = kSweepsBeforeNewton;
   for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {

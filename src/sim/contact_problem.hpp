@@ -54,9 +54,11 @@ struct ContactSolution {
   int painleve = 0;  ///< sliding points with no consistent normal reaction
 };
 
-/// The reactions from the body's state (lin, ang) without them.
+/// The reactions from the body's state (lin, ang) without them. The sweeps start from `start`'s reactions if
+/// given (a nearby problem's: warm-started), else from none.
 ContactSolution solve_contacts(const ContactProblem& problem, const Vec3& lin, const Vec3& ang,
-                               const std::vector<PointCondition>& conditions);
+                               const std::vector<PointCondition>& conditions,
+                               const std::vector<Vec3>* start = nullptr);
 
 /// The same as one linear complementarity problem solved by Lemke's method (solve_contacts' fallback where
 /// Gauss–Seidel does not converge): a point at rest has a friction pyramid of 12 edges (its force falls short

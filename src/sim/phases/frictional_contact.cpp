@@ -142,6 +142,7 @@ void FrictionalContact::classify() {
 
 std::optional<RestPose> FrictionalContact::begin_segment() {
   Run& run = run_;
+  warm_start_.clear();  // the segment's own forces, found cold, start the sweeps of its rate evaluations
   const auto& verts = run.particle.hull.vertices;
   // Nothing below the wall: the integrator's drift is undone by lifting the body (its depth is recorded);
   // a lowest point that drifted up within the band while not leaving is set back on the wall.
@@ -175,6 +176,7 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
   }
   hold_resting_points();
   const std::size_t n = active_.size();
+  if (forces_.forces.size() == n) warm_start_ = forces_.forces;
   if (run.trace)
     std::fprintf(stderr,
                  "t=%.12g frictional points=%zu stick=%d slide=%d painleve=%d v=%g,%g,%g omega=%g,%g,%g\n",
@@ -226,11 +228,12 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
 }
 
 ContactForces FrictionalContact::forces_at(const BodyState& s) const {
-  return forces_at(s, active_, conditions_);
+  return forces_at(s, active_, conditions_, &warm_start_);
 }
 
 ContactForces FrictionalContact::forces_at(const BodyState& s, const std::vector<int>& points,
-                                           std::vector<PointCondition> conditions) const {
+                                           std::vector<PointCondition> conditions,
+                                           const std::vector<Vec3>* warm) const {
   const Run& run = run_;
   const Mat3 R = s.q.toRotationMatrix();
   const ContactBody body{run.body.mass, R * run.body.inertia * R.transpose(), run.params.gravity,
@@ -246,7 +249,8 @@ ContactForces FrictionalContact::forces_at(const BodyState& s, const std::vector
     if (conditions[i].rule == PointRule::sliding && slip.dot(start[i].direction) > 0)
       conditions[i].direction = slip.normalized();
   }
-  return contact_forces(body, motion_of(s), arms, run.params.friction, conditions);
+  return contact_forces(body, motion_of(s), arms, run.params.friction, conditions,
+                        warm && warm->size() == points.size() ? warm : nullptr);
 }
 
 BodyRates FrictionalContact::rates(const BodyState& s) const {

@@ -64,7 +64,8 @@ class FrictionalContact {
   BodyRates rates(const BodyState& s) const;
   ContactForces forces_at(const BodyState& s) const;  // at the segment's points, by their rules
   ContactForces forces_at(const BodyState& s, const std::vector<int>& points,
-                          std::vector<PointCondition> conditions) const;
+                          std::vector<PointCondition> conditions,
+                          const std::vector<Vec3>* warm = nullptr) const;
   // The first event in (a, b], or +∞.
   double locate_event(double a, double b);
   // Before the first segment: the points within the band, and how many of them slip.
@@ -79,6 +80,7 @@ class FrictionalContact {
   std::vector<PointCondition> conditions_;  // their rules for this segment
   std::vector<int> leaving_slowly_;         // in the band, leaving slower than the separation speed
   ContactForces forces_;                    // at the segment's start
+  std::vector<Vec3> warm_start_;            // forces_' forces, where the sweeps of the rates start
   double step_end_ = -INFINITY;
   double event_ = INFINITY;
   bool started_ = false;
