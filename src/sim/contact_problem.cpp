@@ -27,6 +27,9 @@ constexpr double kRoundOff = 64 * std::numeric_limits<double>::epsilon();
 // thousands.
 constexpr int kSweepsBeforeNewton = 10;
 constexpr double kSlowSweep = 0.2;
+// Newton's step costs O((3n)³): beyond this many points (a rim's or a face's many vertices, whose sweeps
+// contract slowly but surely) the sweeps alone are cheaper.
+constexpr std::size_t kMaxPolishedPoints = 8;
 // Gauss–Seidel has diverged once a point's value exceeds this multiple of the scale (with sliding friction
 // and μ above about 1 the sweeps need not contract).
 constexpr double kDiverged = 1e12;
@@ -311,7 +314,8 @@ ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const V
       return s;
     }
     if (!(largest <= kDiverged * p.scale)) break;  // diverging (or not finite)
-    if (slow && sweep + 1 >= next_polish && counts.painleve == 0 && counts.unresolved == 0) {
+    if (n <= kMaxPolishedPoints && slow && sweep + 1 >= next_polish && counts.painleve == 0 &&
+        counts.unresolved == 0) {
       next_polish = 2 * (sweep + 1);
       // Polished by Newton's method; the sweeps' own test then accepts the result or sweeps on from it.
       if (auto newton = solve_contacts_by_newton(p, lin, ang, conditions, s.reactions)) {
