@@ -2,6 +2,7 @@
 // sinking below its drift, a sliding point's slip stopping or turning back, located on the dense output.
 #include <algorithm>
 #include <cmath>
+#include <ranges>
 #include <vector>
 
 #include "../events.hpp"
@@ -24,25 +25,21 @@ double FrictionalContact::locate_event(double a, double b) {
   std::vector<char> on(verts.size(), 0);
   for (int k : active_) on[static_cast<std::size_t>(k)] = 1;
   const double sinking = -tol::kPierceFloor * run.tol.event;
-  // Only the height is needed: the third row of the rotation.
-  const auto touches = [&](double t) {
+  // Whether any of `indices` is below its level at t; only the height is needed: the rotation's third row.
+  const auto any_below = [&](double t, const auto& indices) {
     const BodyState s = integrator_.state_at(t);
     const Vec3 up = s.q.toRotationMatrix().row(2).transpose();
-    for (std::size_t k = 0; k < verts.size(); ++k)
+    for (std::size_t k : indices)
       if (s.com.z() + up.dot(verts[k]) < (on[k] ? sinking : 0.0)) return true;
     return false;
   };
+  const auto every_vertex = std::views::iota(std::size_t{0}, verts.size());
+  const auto touches = [&](double t) { return any_below(t, every_vertex); };
   // The same test over the vertices that may reach their level within the bracket being bisected (the
   // others stay above it there, by the bound in locate_event's loop): a rolling rim has a handful near the
   // wall among hundreds.
   std::vector<std::size_t> near;
-  const auto near_touches = [&](double t) {
-    const BodyState s = integrator_.state_at(t);
-    const Vec3 up = s.q.toRotationMatrix().row(2).transpose();
-    for (std::size_t k : near)
-      if (s.com.z() + up.dot(verts[k]) < (on[k] ? sinking : 0.0)) return true;
-    return false;
-  };
+  const auto near_touches = [&](double t) { return any_below(t, near); };
   // A sliding point's slip stopping, or turning against its direction at the segment's start.
   const auto slip_stops = [&](double t) {
     const BodyState s = integrator_.state_at(t);
