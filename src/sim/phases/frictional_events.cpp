@@ -2,7 +2,7 @@
 // sinking below its drift, a sliding point's slip stopping or turning back, located on the dense output.
 #include <algorithm>
 #include <cmath>
-#include <ranges>
+#include <numeric>
 #include <vector>
 
 #include "../events.hpp"
@@ -33,7 +33,9 @@ double FrictionalContact::locate_event(double a, double b) {
       if (s.com.z() + up.dot(verts[k]) < (on[k] ? sinking : 0.0)) return true;
     return false;
   };
-  const auto every_vertex = std::views::iota(std::size_t{0}, verts.size());
+  // (a vector, not std::views::iota: clang with libstdc++ 12, the fuzzers' compiler, rejects iota_view)
+  std::vector<std::size_t> every_vertex(verts.size());
+  std::iota(every_vertex.begin(), every_vertex.end(), std::size_t{0});
   const auto touches = [&](double t) { return any_below(t, every_vertex); };
   // The same test over the vertices that may reach their level within the bracket being bisected (the
   // others stay above it there, by the bound in locate_event's loop): a rolling rim has a handful near the
