@@ -21,8 +21,7 @@ using repose::Vec3;
 
 inline constexpr double kDensity = 1000.0;  // kg/m³
 inline constexpr double kGravity = 9.81;    // m/s²
-inline constexpr double kDt = 1e-3;         // Bullet's fixed step (s)
-inline constexpr int kWindow = 100;         // rest window: 0.1 s of steps
+inline constexpr double kWindowTime = 0.1;  // the rest test's window (s)
 inline constexpr double kRestFraction = 1e-3;
 inline constexpr double kMaxTime = 20.0;  // s
 
@@ -38,6 +37,7 @@ struct TossOptions {
 
 // Departures from Bullet's defaults, for comparison runs (both off by default).
 struct BulletOptions {
+  double step = 1e-3;  // Bullet's fixed step (s): --bullet-step, or chosen per shape (bullet_steps.hpp)
   bool sleep = true;   // Bullet's deactivation (default on); --bullet-no-sleep turns it off
   double damping = 0;  // repose's damping coefficient C to mirror as Bullet angular damping (0: none)
   TossOptions toss;    // restitution and friction of the body (the ground's 1 and 1), with --toss
@@ -77,6 +77,9 @@ class BulletSide {
       body_->setFriction(std::isfinite(options.toss.friction) ? options.toss.friction : BT_LARGE_FLOAT);
     }
     sleep_ = options.sleep;
+    dt_ = options.step;
+    // The window's two halves hold the same whole number of steps (at 1 ms: 100 steps, 0.1 s).
+    window_ = 2 * std::max(1L, std::lround(kWindowTime / 2 / dt_));
     world_.addRigidBody(body_.get());
   }
 
@@ -119,26 +122,26 @@ class BulletSide {
 
     const double v_tol = kRestFraction * std::sqrt(kGravity * length);
     const double w_tol = kRestFraction * std::sqrt(kGravity / length);
-    std::vector<double> speed(kWindow), spin(kWindow);  // ring buffers of the last 0.1 s
-    const long max_steps = std::lround(kMaxTime / kDt);
+    std::vector<double> speed(window_), spin(window_);  // ring buffers of the last 0.1 s
+    const long max_steps = std::lround(kMaxTime / dt_);
     long step = 0;
     for (; step < max_steps;) {
       const auto s0 = Clock::now();
-      world_.stepSimulation(kDt, 0);
-      speed[step % kWindow] = body_->getLinearVelocity().length();
-      spin[step % kWindow] = body_->getAngularVelocity().length();
+      world_.stepSimulation(dt_, 0);
+      speed[step % window_] = body_->getLinearVelocity().length();
+      spin[step % window_] = body_->getAngularVelocity().length();
       ++step;
       const bool slept = body_->getActivationState() == ISLAND_SLEEPING;
       bool done = slept;
-      if (!done && step >= kWindow) {
+      if (!done && step >= window_) {
         double v[2] = {0, 0}, w[2] = {0, 0};  // sums over the older and the newer half of the window
-        for (int k = 0; k < kWindow; ++k) {
-          const int half = k < kWindow / 2 ? 0 : 1;
-          const long i = (step - kWindow + k) % kWindow;
+        for (long k = 0; k < window_; ++k) {
+          const int half = k < window_ / 2 ? 0 : 1;
+          const long i = (step - window_ + k) % window_;
           v[half] += speed[i];
           w[half] += spin[i];
         }
-        const double n = kWindow;
+        const double n = static_cast<double>(window_);
         done = (v[0] + v[1]) / n < v_tol && (w[0] + w[1]) / n < w_tol && v[1] <= v[0] + 1e-3 * v_tol * n &&
                w[1] <= w[0] + 1e-3 * w_tol * n;
       }
@@ -155,7 +158,7 @@ class BulletSide {
         break;
       }
     }
-    out.time = static_cast<double>(step) * kDt;
+    out.time = static_cast<double>(step) * dt_;
     out.seconds = std::chrono::duration<double>(timed).count();
     const btMatrix3x3& b = body_->getWorldTransform().getBasis();
     const Vec3 down_bullet(-b[2][0], -b[2][1], -b[2][2]);  // Bᵀ·(0,0,−1)
@@ -176,6 +179,8 @@ class BulletSide {
   repose::Mat3 axes_;
   std::vector<Vec3> vertices_;
   bool sleep_ = true;
+  double dt_ = 1e-3;   // the fixed step (s)
+  long window_ = 100;  // the rest window in steps
 
  public:
   ~BulletSide() {

@@ -2,15 +2,22 @@
 //
 // For each shape, drop i of the seed starts both engines at repose::drop_orientation(seed, i), from rest,
 // with the lowest point touching the wall, under the same gravity (SI, g = 9.81 m/s², density 1000 kg/m³, the
-// particle in metres). Per shape it prints the time per settle of each engine, their ratio, Bullet's maximum
-// penetration and both rest-face histograms, classified by repose's rest-pose catalogue.
+// particle in metres, scaled to a characteristic length L of --length metres, default 0.5: the middle of the
+// 0.1–1 m range Bullet is tuned for; --length natural keeps the shapes' own sizes, L 0.6–2.3 m). Per shape it
+// prints the time per settle of each engine, their ratio, the set-up each pays once per particle, Bullet's
+// maximum penetration and both rest-face histograms, classified by repose's rest-pose catalogue.
+//
+// Bullet's step (issue 35): by default each shape runs at every step of bullet_steps.hpp's candidates,
+// 1/60 s (Bullet's default) to 1/1000 s, and is timed at the largest whose rest-pose histogram agrees with
+// the finest's (χ² homogeneity, p ≥ 0.05: its cheapest trustworthy answer); the ratio at 1 ms is printed
+// beside it. --bullet-step S runs Bullet at S seconds only.
 //
 //   repose: the `repose poses` defaults (damping ratio 0.05, decide early; --full-settle: to rest), through
 //           repose::simulate_drop, exactly as a `repose poses` worker runs a drop.
 //   Bullet: btDiscreteDynamicsWorld, btStaticPlaneShape ground at z = 0, the particle a btConvexHullShape of
 //           repose's hull vertices in the principal frame with repose's exact mass and principal moments;
 //           Bullet's defaults otherwise (collision margin, friction 0.5, restitution 0, no damping, solver
-//           settings, deactivation); a fixed step stepSimulation(1 ms, 0). It starts with the lowest point of
+//           settings, deactivation); a fixed step stepSimulation(dt, 0). It starts with the lowest point of
 //           its collision shape (the hull grown by the margin, 0.04 m) touching the plane. A drop ends at the
 //           first 0.1 s window whose mean |v| and |ω| are below 1e-3·sqrt(g·L) and 1e-3·sqrt(g/L) and not
 //           growing (second half of the window no faster than the first), or when Bullet puts the body to
@@ -28,10 +35,14 @@
 //
 // One thread for everything. Time per settle is steady_clock time over the N drops; for Bullet only the
 // drop's reset, its steps and the rest test are timed, not the penetration measurement (a scan of every hull
-// vertex after every step, which Bullet itself does not need).
+// vertex after every step, which Bullet itself does not need). Set-up is timed apart: repose's is what
+// `repose poses` pays once per particle (the particle from its mesh: hull, mass properties; the rest-pose
+// landscape and catalogue; the study); Bullet's is its world and convex-hull shape, given repose's hull
+// vertices and mass properties for free.
 //
 // Run:  build/release/bench/peers/repose_peer_bullet [--drops N] [--seed S] [--only NAME[,NAME...]]
 //                                                    [--full-settle] [--toss E,MU [--match-threshold]]
+//                                                    [--length L|natural] [--bullet-step S]
 //                                                    [--bullet-no-sleep] [--bullet-damping]
 //                                                    [--trace] [--no-histograms]   (--help: what they do)
 // Figures and discussion: docs/performance.md ("Against Bullet").
@@ -60,6 +71,8 @@
 
 #include "../bumpy_ellipsoid.hpp"
 #include "bullet_side.hpp"
+#include "bullet_steps.hpp"
+#include "peer_report.hpp"
 
 namespace {
 
@@ -73,10 +86,15 @@ struct Shape {
   std::string about;  // what it is
 };
 
-repose::Particle make_shape_particle(const Shape& shape) {
+repose::Particle make_shape_particle(const Shape& shape, const repose::MeshOptions& options = {}) {
   if (shape.spec == "bumpy-ellipsoid")
-    return repose::make_particle(bumpy_ellipsoid(32), shape.spec, kDensity);
-  return repose::load_particle(shape.spec, kDensity);
+    return repose::make_particle(bumpy_ellipsoid(32), shape.spec, kDensity, options);
+  return repose::load_particle(shape.spec, kDensity, options);
+}
+
+// The scale that gives the shape a characteristic length of `length` metres (0: its own size).
+double scale_to(const Shape& shape, double length) {
+  return length > 0 ? length / make_shape_particle(shape).length : 1.0;
 }
 
 // repose's side of the comparison: everything `repose poses` prepares once per particle.
@@ -118,124 +136,112 @@ std::pair<int, double> nearest_face(const repose::Particle& particle, const Vec3
   return {best, std::acos(std::clamp(best_dot, -1.0, 1.0))};
 }
 
-struct Row {
-  std::string name;
-  int hull_vertices = 0;
-  double length = 0;
-  std::uint64_t drops = 0;
-  double repose_seconds = 0, bullet_seconds = 0;
-  double bullet_depth = -INFINITY, bullet_mean_time = 0, bullet_tilt = 0;
-  std::uint64_t bullet_no_rest = 0, bullet_slept = 0, bullet_off_face = 0, repose_no_rest = 0, agree = 0;
-  std::vector<std::uint64_t> repose_hist, bullet_hist;
-  std::vector<Vec3> pose_normals;
-  double margin = 0;
-};
+// Bullet's N drops at one step, classified by repose's catalogue and compared with repose's poses.
+BulletRun run_bullet(const repose::Particle& particle, const ReposeSide& rs,
+                     const std::vector<int>& repose_pose, std::uint64_t seed, bool trace,
+                     BulletOptions options) {
+  BulletRun run;
+  run.step = options.step;
+  const repose::RestPoseCatalog& catalog = rs.study.catalog;
+  run.hist.assign(catalog.poses.size() + 1, 0);  // last bin: no rest
+  const auto t_setup = Clock::now();
+  BulletSide bullet(particle, options);
+  run.setup_seconds = std::chrono::duration<double>(Clock::now() - t_setup).count();
+  const std::uint64_t drops = repose_pose.size();
+  for (std::uint64_t i = 0; i < drops; ++i) {
+    const BulletSide::Drop d =
+        options.toss.active
+            ? bullet.drop(repose::drop_orientation(seed, i), particle.length,
+                          repose::drop_toss(seed, i, rs.options.toss), TossOptions::kHeight * particle.length)
+            : bullet.drop(repose::drop_orientation(seed, i), particle.length);
+    run.seconds += d.seconds;
+    run.mean_time += d.time / static_cast<double>(drops);
+    run.depth = std::max(run.depth, d.max_depth);
+    const auto [face, angle] = nearest_face(particle, d.down_body);
+    const int pose = catalog.face_pose[face];
+    if (d.slept) ++run.slept;
+    if (trace)
+      std::fprintf(
+          stderr,
+          "  step %.4g s, drop %llu: repose pose %d; Bullet pose %d (%.3g ms), %s at %.3f s, face %d "
+          "(stability margin %.3g L) at %.3g rad\n",
+          options.step, static_cast<unsigned long long>(i), repose_pose[i], pose, 1e3 * d.seconds,
+          d.slept    ? "asleep"
+          : d.rested ? "at rest"
+                     : "NO REST",
+          d.time, face, particle.face_stability_margin[face] / particle.length, angle);
+    if (particle.face_stability_margin[face] <= 0 || angle > 1e-2) ++run.off_face;
+    run.tilt = std::max(run.tilt, angle);
+    if (d.rested) {
+      ++run.hist[pose];
+    } else {
+      ++run.no_rest;
+      ++run.hist.back();
+    }
+    if (repose_pose[i] == pose) ++run.agree;
+  }
+  return run;
+}
 
 Row run_shape(const Shape& shape, std::uint64_t drops, std::uint64_t seed, bool full_settle, bool trace,
-              BulletOptions bullet_options) {
-  const repose::Particle particle = make_shape_particle(shape);
+              double length, const std::vector<double>& steps, BulletOptions bullet_options) {
+  repose::MeshOptions mesh_options;
+  mesh_options.scale = scale_to(shape, length);
+  // repose's set-up: what `repose poses` pays once per particle.
+  const auto t_setup = Clock::now();
+  const repose::Particle particle = make_shape_particle(shape, mesh_options);
   ReposeSide rs = prepare_repose(particle, full_settle, bullet_options.toss);
+  Row row;
+  row.repose_setup_seconds = std::chrono::duration<double>(Clock::now() - t_setup).count();
   rs.options.seed = seed;
   const repose::RestPoseCatalog& catalog = rs.study.catalog;
   if (bullet_options.damping > 0) bullet_options.damping = rs.study.params.damping;
-  BulletSide bullet(particle, bullet_options);
-  Row row;
   row.name = shape.name;
   row.hull_vertices = static_cast<int>(particle.hull.vertices.size());
   row.length = particle.length;
   row.drops = drops;
-  row.margin = bullet.margin();
+  row.margin = BulletSide(particle, bullet_options).margin();
   const std::size_t poses = catalog.poses.size();
   row.repose_hist.assign(poses + 1, 0);  // last bin: no rest
-  row.bullet_hist.assign(poses + 1, 0);
   for (const repose::RestPose& p : catalog.poses) row.pose_normals.push_back(p.down_normal_body);
 
   std::vector<int> repose_pose(drops);
-  std::vector<double> repose_drop_seconds(drops);  // for --trace only (the row's time is the whole loop's)
-  std::vector<long> repose_steps(drops);
   const auto t0 = Clock::now();
   for (std::uint64_t i = 0; i < drops; ++i) {
     const auto t_drop = trace ? Clock::now() : t0;
     const repose::DropOutcome outcome = repose::simulate_drop(particle, rs.landscape, catalog, rs.options, i);
     repose_pose[i] = outcome.pose;
-    if (trace) {
-      repose_drop_seconds[i] = std::chrono::duration<double>(Clock::now() - t_drop).count();
-      repose_steps[i] = outcome.steps;
-    }
+    if (trace)
+      std::fprintf(stderr, "  drop %llu: repose pose %d (%.3g ms, %ld steps)\n",
+                   static_cast<unsigned long long>(i), outcome.pose,
+                   1e3 * std::chrono::duration<double>(Clock::now() - t_drop).count(), outcome.steps);
   }
   row.repose_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-
-  for (std::uint64_t i = 0; i < drops; ++i) {
-    const BulletSide::Drop d =
-        bullet_options.toss.active
-            ? bullet.drop(repose::drop_orientation(seed, i), particle.length,
-                          repose::drop_toss(seed, i, rs.options.toss), TossOptions::kHeight * particle.length)
-            : bullet.drop(repose::drop_orientation(seed, i), particle.length);
-    row.bullet_seconds += d.seconds;
-    row.bullet_mean_time += d.time / static_cast<double>(drops);
-    row.bullet_depth = std::max(row.bullet_depth, d.max_depth);
-    const auto [face, angle] = nearest_face(particle, d.down_body);
-    const int pose = catalog.face_pose[face];
-    if (!d.rested) ++row.bullet_no_rest;
-    if (d.slept) ++row.bullet_slept;
-    if (trace)
-      std::fprintf(
-          stderr,
-          "  drop %llu: repose pose %d (%.3g ms, %ld steps); Bullet pose %d (%.3g ms), %s at %.3f s, face %d "
-          "(stability margin %.3g L) at %.3g rad\n",
-          static_cast<unsigned long long>(i), repose_pose[i], 1e3 * repose_drop_seconds[i], repose_steps[i],
-          pose, 1e3 * d.seconds,
-          d.slept    ? "asleep"
-          : d.rested ? "at rest"
-                     : "NO REST",
-          d.time, face, particle.face_stability_margin[face] / particle.length, angle);
-    if (particle.face_stability_margin[face] <= 0 || angle > 1e-2) ++row.bullet_off_face;
-    row.bullet_tilt = std::max(row.bullet_tilt, angle);
-    ++row.bullet_hist[pose];
-    if (repose_pose[i] < 0) {
-      ++row.repose_no_rest;
-      ++row.repose_hist[poses];
-    } else {
-      ++row.repose_hist[repose_pose[i]];
-    }
-    if (repose_pose[i] == pose) ++row.agree;
+  for (int pose : repose_pose) {
+    if (pose < 0) ++row.repose_no_rest;
+    ++row.repose_hist[pose < 0 ? poses : static_cast<std::size_t>(pose)];
   }
+
+  for (double step : steps) {
+    bullet_options.step = step;
+    row.bullet.push_back(run_bullet(particle, rs, repose_pose, seed, trace, bullet_options));
+  }
+  std::vector<std::vector<std::uint64_t>> hists;
+  for (BulletRun& run : row.bullet) {
+    run.against_finest = homogeneity(run.hist, row.bullet.back().hist);
+    run.rest_against_finest = homogeneity(rest_or_not(run.hist), rest_or_not(row.bullet.back().hist));
+    hists.push_back(run.hist);
+  }
+  row.chosen = chosen_step(hists);
   return row;
-}
-
-void print_histogram(const Row& row) {
-  std::printf(
-      "\n%s: rest poses (repose catalogue; Bullet's final down direction -> nearest hull face -> its "
-      "pose)\n\n",
-      row.name.c_str());
-  std::printf("| pose | down normal (body) | repose | Bullet |\n|---:|---|---:|---:|\n");
-  std::vector<std::size_t> order;
-  for (std::size_t p = 0; p < row.pose_normals.size(); ++p)
-    if (row.repose_hist[p] + row.bullet_hist[p] > 0) order.push_back(p);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return row.repose_hist[a] + row.bullet_hist[a] > row.repose_hist[b] + row.bullet_hist[b];
-  });
-  for (std::size_t p : order) {
-    const Vec3& n = row.pose_normals[p];
-    std::printf("| %zu | (%+.3f, %+.3f, %+.3f) | %llu | %llu |\n", p, n.x(), n.y(), n.z(),
-                static_cast<unsigned long long>(row.repose_hist[p]),
-                static_cast<unsigned long long>(row.bullet_hist[p]));
-  }
-  if (row.repose_no_rest > 0)
-    std::printf("| no rest | | %llu | |\n", static_cast<unsigned long long>(row.repose_no_rest));
-  std::printf(
-      "\nsame pose in both engines: %llu of %llu drops; Bullet's largest angle between its final down "
-      "direction "
-      "and the nearest hull face normal: %.2g rad\n",
-      static_cast<unsigned long long>(row.agree), static_cast<unsigned long long>(row.drops),
-      row.bullet_tilt);
 }
 
 int usage(const char* argv0, bool help = false) {
   std::fprintf(
       help ? stdout : stderr,
       "usage: %s [--drops N] [--seed S] [--only NAME[,NAME...]] [--full-settle] [--toss E,MU]\n"
-      "          [--match-threshold] [--bullet-no-sleep] [--bullet-damping] [--trace] [--no-histograms]\n"
+      "          [--match-threshold] [--length L|natural] [--bullet-step S] [--bullet-no-sleep]\n"
+      "          [--bullet-damping] [--trace] [--no-histograms]\n"
       "  --drops N      drops per shape (default: per shape, a run of a few minutes)\n"
       "  --seed S       drop i starts at repose::drop_orientation(S, i) (default 1)\n"
       "  --only NAMES   comma-separated row names (cube, box123, tetrahedron, cylinder64, ellipsoid2000,\n"
@@ -245,6 +251,10 @@ int usage(const char* argv0, bool help = false) {
       "                 restitution E and friction MU (inf: no slip) in both engines\n"
       "  --match-threshold  with --toss: repose's impacts below Bullet's restitution velocity threshold\n"
       "                 (0.2 m/s) plastic too, as Bullet's are (default: repose's E at every speed)\n"
+      "  --length L     scale every shape to a characteristic length (volume-equivalent diameter) of L m\n"
+      "                 (default 0.5: the middle of Bullet's 0.1-1 m range); natural: the shapes' own sizes\n"
+      "  --bullet-step S  Bullet's fixed step in seconds (default: per shape, the largest of 1/60, 1/120,\n"
+      "                 1/240, 1/480 and 1/1000 s whose rest poses agree with 1/1000 s's; all are run)\n"
       "  --bullet-no-sleep  switch off Bullet's deactivation (default: on, Bullet's default)\n"
       "  --bullet-damping   give Bullet angular damping at repose's rate C/I (default: none, Bullet's "
       "default)\n"
@@ -262,6 +272,8 @@ int main(int argc, char** argv) {
   bool full_settle = false, histograms = true, trace = false;
   BulletOptions bullet_options;
   std::string only;
+  double length = 0.5;  // m; 0: the shapes' own sizes
+  std::vector<double> steps = kCandidateSteps;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto value = [&]() -> std::string { return i + 1 < argc ? argv[++i] : std::string(); };
@@ -289,6 +301,14 @@ int main(int argc, char** argv) {
         return usage(argv[0]);
     } else if (a == "--match-threshold") {
       bullet_options.toss.threshold = btContactSolverInfo().m_restitutionVelocityThreshold;
+    } else if (a == "--length") {
+      const std::string v = value();
+      length = v == "natural" ? 0 : std::strtod(v.c_str(), nullptr);
+      if (!(length >= 0) || !std::isfinite(length) || (length == 0 && v != "natural")) return usage(argv[0]);
+    } else if (a == "--bullet-step") {
+      const double step = std::strtod(value().c_str(), nullptr);
+      if (!(step > 0 && step <= 0.1)) return usage(argv[0]);
+      steps = {step};
     } else if (a == "--bullet-no-sleep") {
       bullet_options.sleep = false;
     } else if (a == "--bullet-damping") {
@@ -312,13 +332,16 @@ int main(int argc, char** argv) {
       {{"grain1000", "irregular:seed=1,n=68", "irregular grain"}, 200},
       {{"grain10000", "bumpy-ellipsoid", "bumpy ellipsoid (see source)"}, 50},
   };
+  std::string steps_label;
+  for (double step : steps) steps_label += (steps_label.empty() ? "" : ", ") + step_label(step);
   std::printf(
-      "Bullet %d, btScalar %s precision, fixed step %g s, margin default, deactivation %s, angular damping "
-      "%s; "
-      "repose %s, seed %llu%s\n\n",
-      btGetVersion(), sizeof(btScalar) == 8 ? "double" : "single", kDt, bullet_options.sleep ? "on" : "off",
+      "Bullet %d, btScalar %s precision, fixed step %s%s, margin default, deactivation %s, angular damping "
+      "%s; repose %s, seed %llu; shapes at L = %s%s\n\n",
+      btGetVersion(), sizeof(btScalar) == 8 ? "double" : "single", steps.size() > 1 ? "chosen from " : "",
+      steps_label.c_str(), bullet_options.sleep ? "on" : "off",
       bullet_options.damping > 0 ? "repose's rate" : "none",
       full_settle ? "--full-settle" : "poses defaults (decide early)", static_cast<unsigned long long>(seed),
+      length > 0 ? (std::to_string(length) + " m").c_str() : "their own sizes",
       bullet_options.toss.active
           ? (", tossed: E " + std::to_string(bullet_options.toss.restitution) + ", mu " +
              std::to_string(bullet_options.toss.friction) + ", repose's restitution threshold " +
@@ -330,31 +353,15 @@ int main(int argc, char** argv) {
     for (const auto& [shape, default_drops] : shapes) {
       if (!only.empty() && only.find(',' + shape.name + ',') == std::string::npos) continue;
       std::fprintf(stderr, "%s (%s) ...\n", shape.name.c_str(), shape.spec.c_str());
-      rows.push_back(
-          run_shape(shape, drops > 0 ? drops : default_drops, seed, full_settle, trace, bullet_options));
+      rows.push_back(run_shape(shape, drops > 0 ? drops : default_drops, seed, full_settle, trace, length,
+                               steps, bullet_options));
     }
   } catch (const repose::Error& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;
   }
-  std::printf(
-      "| shape | hull vertices | L (m) | drops | repose ms/settle | Bullet ms/settle | Bullet / repose | "
-      "Bullet "
-      "simulated s/settle | Bullet max depth of a hull vertex (L) | Bullet max depth of hull + margin (L) | "
-      "same "
-      "pose | Bullet no rest / off a stable face |\n");
-  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-  for (const Row& r : rows) {
-    const double n = static_cast<double>(r.drops);
-    const double rep = 1e3 * r.repose_seconds / n, bul = 1e3 * r.bullet_seconds / n;
-    std::printf(
-        "| %s | %d | %.3f | %llu | %.3f | %.3f | %.2f | %.2f | %.1e | %.1e | %.0f %% | %llu / %llu |\n",
-        r.name.c_str(), r.hull_vertices, r.length, static_cast<unsigned long long>(r.drops), rep, bul,
-        bul / rep, r.bullet_mean_time, std::max(0.0, r.bullet_depth) / r.length,
-        std::max(0.0, r.bullet_depth + r.margin) / r.length, 100.0 * static_cast<double>(r.agree) / n,
-        static_cast<unsigned long long>(r.bullet_no_rest),
-        static_cast<unsigned long long>(r.bullet_off_face));
-  }
+  print_table(rows);
+  print_steps(rows);
   if (histograms)
     for (const Row& r : rows) print_histogram(r);
   return 0;
