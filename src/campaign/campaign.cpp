@@ -49,12 +49,18 @@ struct RootState {
   std::vector<PosesStudy> studies;
   std::vector<std::vector<DropRange>> remaining;
   std::vector<double> cost_per_drop;
+  // The first particle's model, kept for the root's own work so that a single scan is not loaded twice (a
+  // 200,000-triangle scan's set-up is most of a quasi-static study); the others are loaded again when run, so
+  // that a library of scans does not stay in memory at once.
+  std::unique_ptr<ParticleModel> first_model;
 };
 
 // One particle's part of the root's preparation: its study so far (from the checkpoint) and what is left.
+// `keep`: where to leave the model (null: drop it).
 void prepare_particle(const CampaignParticle& p, const CampaignOptions& options, PosesStudy& study,
-                      std::vector<DropRange>& left, double& cost_per_drop) {
-  const std::unique_ptr<ParticleModel> model = load_model(p, options.settings);
+                      std::vector<DropRange>& left, double& cost_per_drop,
+                      std::unique_ptr<ParticleModel>* keep) {
+  std::unique_ptr<ParticleModel> model = load_model(p, options.settings);
   study = model->header;
   left = {options.drops};
   const std::string path = options.checkpoint_dir.empty() ? "" : checkpoint_path(options.checkpoint_dir, p);
@@ -72,6 +78,7 @@ void prepare_particle(const CampaignParticle& p, const CampaignOptions& options,
   // The engine's cost per step grows with the hull's size; smooth particles also take more steps.
   const double hull = static_cast<double>(model->particle.hull.vertices.size());
   cost_per_drop = hull * (model->header.smooth ? 4.0 : 1.0);
+  if (keep) *keep = std::move(model);
 }
 
 // The particles are prepared in parallel (a library of large scans loads much faster); the error reported is
@@ -87,7 +94,8 @@ RootState prepare_root(const std::vector<CampaignParticle>& particles, const Cam
   arena.execute([&] {
     tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
       try {
-        prepare_particle(particles[i], options, state.studies[i], state.remaining[i], state.cost_per_drop[i]);
+        prepare_particle(particles[i], options, state.studies[i], state.remaining[i], state.cost_per_drop[i],
+                         i == 0 ? &state.first_model : nullptr);
       } catch (...) {
         errors[i] = std::current_exception();
       }
@@ -147,7 +155,7 @@ std::vector<PosesStudy> run_campaign(const std::function<std::vector<CampaignPar
   // Any rank: the model of a particle. The last one is kept, since items of one particle mostly follow each
   // other.
   std::uint32_t cached_index = 0;
-  std::unique_ptr<ParticleModel> cached;
+  std::unique_ptr<ParticleModel> cached = std::move(state.first_model);  // the root's, or none
   const auto model_of = [&](std::uint32_t index) -> const ParticleModel& {
     if (index >= particles.size()) throw Error("work item for an unknown particle");
     if (!cached || cached_index != index) {
