@@ -42,7 +42,7 @@
 //
 // Run:  build/release/bench/peers/repose_peer_bullet [--drops N] [--seed S] [--only NAME[,NAME...]]
 //                                                    [--full-settle] [--toss E,MU [--match-threshold]]
-//                                                    [--length L|natural] [--bullet-step S]
+//                                                    [--length L|natural] [--bullet-step S] [--meshes FILE]
 //                                                    [--bullet-no-sleep] [--bullet-damping]
 //                                                    [--trace] [--no-histograms]   (--help: what they do)
 // Figures and discussion: docs/performance.md ("Against Bullet").
@@ -54,6 +54,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <numbers>
@@ -66,36 +68,20 @@
 #include <repose/poses/sampling.hpp>
 #include <repose/poses/study.hpp>
 #include <repose/repose.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
-#include "../bumpy_ellipsoid.hpp"
 #include "bullet_side.hpp"
 #include "bullet_steps.hpp"
 #include "peer_report.hpp"
+#include "peer_shapes.hpp"
 
 namespace {
 
 using namespace peer;  // the shared units, options and Bullet's side (bullet_side.hpp)
 using repose::Quat;
 using repose::Vec3;
-
-struct Shape {
-  std::string name;   // row label
-  std::string spec;   // repose shape spec, or "bumpy-ellipsoid" (built here)
-  std::string about;  // what it is
-};
-
-repose::Particle make_shape_particle(const Shape& shape, const repose::MeshOptions& options = {}) {
-  if (shape.spec == "bumpy-ellipsoid")
-    return repose::make_particle(bumpy_ellipsoid(32), shape.spec, kDensity, options);
-  return repose::load_particle(shape.spec, kDensity, options);
-}
-
-// The scale that gives the shape a characteristic length of `length` metres (0: its own size).
-double scale_to(const Shape& shape, double length) {
-  return length > 0 ? length / make_shape_particle(shape).length : 1.0;
-}
 
 // repose's side of the comparison: everything `repose poses` prepares once per particle.
 struct ReposeSide {
@@ -185,11 +171,10 @@ BulletRun run_bullet(const repose::Particle& particle, const ReposeSide& rs,
 
 Row run_shape(const Shape& shape, std::uint64_t drops, std::uint64_t seed, bool full_settle, bool trace,
               double length, const std::vector<double>& steps, BulletOptions bullet_options) {
-  repose::MeshOptions mesh_options;
-  mesh_options.scale = scale_to(shape, length);
+  const double scale = scale_to(shape, length);
   // repose's set-up: what `repose poses` pays once per particle.
   const auto t_setup = Clock::now();
-  const repose::Particle particle = make_shape_particle(shape, mesh_options);
+  const repose::Particle particle = make_shape_particle(shape, scale);
   ReposeSide rs = prepare_repose(particle, full_settle, bullet_options.toss);
   Row row;
   row.repose_setup_seconds = std::chrono::duration<double>(Clock::now() - t_setup).count();
@@ -251,6 +236,8 @@ int usage(const char* argv0, bool help = false) {
       "                 restitution E and friction MU (inf: no slip) in both engines\n"
       "  --match-threshold  with --toss: repose's impacts below Bullet's restitution velocity threshold\n"
       "                 (0.2 m/s) plastic too, as Bullet's are (default: repose's E at every speed)\n"
+      "  --meshes FILE  also a row for each mesh FILE lists, one per line: NAME PATH [--repair] [--convex]\n"
+      "                 (PATH relative to FILE; scripts/fetch-meshes.sh writes such a list)\n"
       "  --length L     scale every shape to a characteristic length (volume-equivalent diameter) of L m\n"
       "                 (default 0.5: the middle of Bullet's 0.1-1 m range); natural: the shapes' own sizes\n"
       "  --bullet-step S  Bullet's fixed step in seconds (default: per shape, the largest of 1/60, 1/120,\n"
@@ -271,7 +258,7 @@ int main(int argc, char** argv) {
   std::uint64_t drops = 0, seed = 1;
   bool full_settle = false, histograms = true, trace = false;
   BulletOptions bullet_options;
-  std::string only;
+  std::string only, mesh_list;
   double length = 0.5;  // m; 0: the shapes' own sizes
   std::vector<double> steps = kCandidateSteps;
   for (int i = 1; i < argc; ++i) {
@@ -301,6 +288,8 @@ int main(int argc, char** argv) {
         return usage(argv[0]);
     } else if (a == "--match-threshold") {
       bullet_options.toss.threshold = btContactSolverInfo().m_restitutionVelocityThreshold;
+    } else if (a == "--meshes") {
+      mesh_list = value();
     } else if (a == "--length") {
       const std::string v = value();
       length = v == "natural" ? 0 : std::strtod(v.c_str(), nullptr);
@@ -321,17 +310,14 @@ int main(int argc, char** argv) {
       return usage(argv[0], a == "--help" || a == "-h");
     }
   }
-  // Default drops per shape: a run of a few minutes (about 2.5 on a loaded 2 GHz core).
-  const std::vector<std::pair<Shape, std::uint64_t>> shapes = {
-      {{"cube", "box:x=1,y=1,z=1", "cube, 1 m"}, 2000},
-      {{"box123", "box:x=1,y=2,z=3", "box 1x2x3 m"}, 2000},
-      {{"tetrahedron", "tetrahedron:edge=1", "regular tetrahedron, edge 1 m"}, 2000},
-      {{"cylinder64", "cylinder:r=0.5,h=1,n=64", "64-segment cylinder"}, 1000},
-      {{"ellipsoid2000", "ellipsoid:a=0.625,b=0.5,c=0.285,n=10", "ellipsoid, 2,000 triangles"}, 500},
-      {{"grain100", "irregular:seed=1,n=7", "irregular grain"}, 500},
-      {{"grain1000", "irregular:seed=1,n=68", "irregular grain"}, 200},
-      {{"grain10000", "bumpy-ellipsoid", "bumpy ellipsoid (see source)"}, 50},
-  };
+  std::vector<std::pair<Shape, std::uint64_t>> shapes = default_shapes();
+  try {
+    if (!mesh_list.empty())
+      for (const Shape& shape : read_mesh_list(mesh_list)) shapes.emplace_back(shape, 200);
+  } catch (const repose::Error& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
   std::string steps_label;
   for (double step : steps) steps_label += (steps_label.empty() ? "" : ", ") + step_label(step);
   std::printf(
