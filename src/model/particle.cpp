@@ -48,8 +48,10 @@ MassProperties input_mass_properties(TriangleMesh& mesh, const std::string& name
       try {
         p.report = validate_mesh(mesh, name);
       } catch (const SurfaceError& e) {
-        throw SurfaceError(std::string(e.what()) +
-                           "; --repair mends it, or --inertia convex or --inertia shell loads it as it is");
+        throw SurfaceError(
+            std::string(e.what()) +
+            "; --repair tries to mend it (holes, winding, duplicates), or --inertia convex or --inertia "
+            "shell loads it as it is");
       }
       return compute_mass_properties(mesh, density);
     case InertiaModel::shell:
