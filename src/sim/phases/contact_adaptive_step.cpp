@@ -148,11 +148,23 @@ void Contact::begin_adaptive_step() {
   const Vec3 r3 = rot_.q.toRotationMatrix().row(2).transpose();
   std::vector<int>& reachable = walk_out_;
   reachable.clear();
+  StepVertices& packed = step_vertices_;
+  packed.offset.clear();
+  packed.pierce.clear();
+  packed.rise.clear();
+  packed.enter.clear();
   for (int k : event_candidates_) {
     const Vec3 d = run.particle.hull.vertices[static_cast<std::size_t>(k)] - support_.body;
     z_[k] = support_.world.z() + r3.dot(d);
     const double reach = arc * d.norm() + run.tol.event;
-    if (z_[k] - reach < event_level(k) || z_[k] + reach > rise_level(k)) reachable.push_back(k);
+    if (z_[k] - reach < event_level(k) || z_[k] + reach > rise_level(k)) {
+      const auto kk = static_cast<std::size_t>(k);
+      reachable.push_back(k);
+      packed.offset.push_back(d);
+      packed.pierce.push_back(pierce_level(kk));
+      packed.rise.push_back(rise_level(kk));
+      packed.enter.push_back(band_events() && !in_contact_[kk] ? run.tol.band : -INFINITY);
+    }
   }
   // The dense output at evenly spaced instants: the first at which an event holds brackets it.
   std::array<double, kEventSamples + 1> times;
@@ -205,13 +217,15 @@ double Contact::locate_step_event(double lo, double hi, const EventFlags& at_hi)
 // 1's contact set shrinks: a line or surface contact may become a point), over the step's reachable vertices.
 Contact::EventFlags Contact::adaptive_event_at(const Quat& qq) const {
   const Vec3 r3 = qq.toRotationMatrix().row(2).transpose();
+  const StepVertices& v = step_vertices_;
+  const double base = support_.world.z();  // height_of(r3, k), from the packed offsets
   bool left = false;
   EventFlags e;
-  for (int k : walk_out_) {
-    const double zk = height_of(r3, k);
-    e.pierced = e.pierced || pierces(k, zk);
-    e.entered = e.entered || enters_band(k, zk);
-    left = left || rises(k, zk);
+  for (std::size_t i = 0; i < v.offset.size(); ++i) {
+    const double zk = base + r3.dot(v.offset[i]);
+    e.pierced = e.pierced || zk < v.pierce[i];
+    e.entered = e.entered || zk <= v.enter[i];
+    left = left || zk > v.rise[i];
   }
   e.any = e.pierced || e.entered || left;
   return e;
@@ -221,11 +235,13 @@ Contact::EventFlags Contact::adaptive_event_at(const Quat& qq) const {
 // one has passed below the wall or left the band, zero or negative once one has entered it.
 double Contact::event_margin(const Quat& qq) const {
   const Vec3 r3 = qq.toRotationMatrix().row(2).transpose();
+  const StepVertices& v = step_vertices_;
+  const double base = support_.world.z();
   double m = INFINITY;
-  for (int k : walk_out_) {
-    const double zk = height_of(r3, k);
-    m = std::min({m, zk - pierce_level(k), rise_level(k) - zk});
-    if (band_events() && !in_contact_[k]) m = std::min(m, zk - run_.tol.band);
+  for (std::size_t i = 0; i < v.offset.size(); ++i) {
+    const double zk = base + r3.dot(v.offset[i]);
+    m = std::min({m, zk - v.pierce[i], v.rise[i] - zk});
+    if (v.enter[i] > -INFINITY) m = std::min(m, zk - v.enter[i]);
   }
   return m;
 }
