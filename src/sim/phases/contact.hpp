@@ -113,7 +113,6 @@ class Contact {
     if (run_.adaptive && !run_.smooth && in_contact_[k] == kTouchingPoint) return run_.tol.touch;
     return band_events() && in_contact_[k] ? run_.tol.band + run_.tol.touch : INFINITY;
   }
-  bool rises(std::size_t k, double zk) const { return zk > rise_level(k); }
   // The lowest height vertex k may reach in a step without an event.
   double event_level(std::size_t k) const {
     return band_events() && !in_contact_[k] ? run_.tol.band : pierce_level(k);
@@ -214,7 +213,7 @@ class Contact {
   std::vector<int> next_contact_, decision_contact_, decision_touching_, decision_set_;
   std::vector<std::pair<double, double>> margin_samples_;  // brief_stability_pass's margins by time
   std::vector<char> walk_visited_;                         // of hull size, all zero between uses
-  std::vector<int> walk_out_;  // a walk's vertices, then a step's reachable vertices
+  std::vector<int> walk_out_;                              // a walk's vertices (scratch)
   // The step's reachable vertices packed for the event tests made at every instant of its event search: their
   // offsets from the support point (body frame) and their event levels, all fixed within the step (enter: the
   // band's level for a vertex that can enter it, else -inf). Contiguous, so the tests read no scattered

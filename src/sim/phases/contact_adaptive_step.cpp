@@ -146,8 +146,6 @@ void Contact::begin_adaptive_step() {
   // own event levels are checked; most steps keep none and look no further.
   vertices_below(rot_.q, level + arc * reach_radius_ + run.tol.event, event_candidates_, false);
   const Vec3 r3 = rot_.q.toRotationMatrix().row(2).transpose();
-  std::vector<int>& reachable = walk_out_;
-  reachable.clear();
   StepVertices& packed = step_vertices_;
   packed.offset.clear();
   packed.pierce.clear();
@@ -159,7 +157,6 @@ void Contact::begin_adaptive_step() {
     const double reach = arc * d.norm() + run.tol.event;
     if (z_[k] - reach < event_level(k) || z_[k] + reach > rise_level(k)) {
       const auto kk = static_cast<std::size_t>(k);
-      reachable.push_back(k);
       packed.offset.push_back(d);
       packed.pierce.push_back(pierce_level(kk));
       packed.rise.push_back(rise_level(kk));
@@ -172,7 +169,7 @@ void Contact::begin_adaptive_step() {
     times[i] = i == kEventSamples ? t1 : t0 + (t1 - t0) * i / kEventSamples;
   int first = -1;
   EventFlags at_first;
-  if (!reachable.empty())
+  if (!packed.offset.empty())
     for (int i = 1; i <= kEventSamples && first < 0; ++i)
       if ((at_first = adaptive_event_at(integrator_->orientation_at(times[i]))).any) first = i;
   step.end = t1;

@@ -41,12 +41,10 @@ void Contact::vertices_below_among(const Quat& qq, double level, std::span<const
 }
 
 // Whether the band picked from the step's candidates is the one a walk finds (the sanitizer build checks
-// every such pick); the walk's scratch is left as it was.
+// every such pick).
 bool Contact::band_matches_walk(double level, const std::vector<int>& picked) {
-  const std::vector<int> reachable = walk_out_;
   std::vector<int> walked;
   vertices_below(run_.q, level, walked, true);
-  walk_out_ = reachable;
   return walked == picked;
 }
 
