@@ -145,7 +145,6 @@ BulletRun run_bullet(const repose::Particle& particle, const ReposeSide& rs,
     run.depth = std::max(run.depth, d.max_depth);
     const auto [face, angle] = nearest_face(particle, d.down_body);
     const int pose = catalog.face_pose[face];
-    if (d.slept) ++run.slept;
     if (trace)
       std::fprintf(
           stderr,
@@ -185,7 +184,6 @@ Row run_shape(const Shape& shape, std::uint64_t drops, std::uint64_t seed, bool 
   row.hull_vertices = static_cast<int>(particle.hull.vertices.size());
   row.length = particle.length;
   row.drops = drops;
-  row.margin = BulletSide(particle, bullet_options).margin();
   const std::size_t poses = catalog.poses.size();
   row.repose_hist.assign(poses + 1, 0);  // last bin: no rest
   for (const repose::RestPose& p : catalog.poses) row.pose_normals.push_back(p.down_normal_body);

@@ -19,7 +19,7 @@ struct BulletRun {
   double step = 0;
   double seconds = 0, setup_seconds = 0;
   double depth = -INFINITY, mean_time = 0, tilt = 0;
-  std::uint64_t no_rest = 0, slept = 0, off_face = 0, agree = 0;
+  std::uint64_t no_rest = 0, off_face = 0, agree = 0;
   std::vector<std::uint64_t> hist;
   Homogeneity against_finest;       // its histogram against the finest step's
   Homogeneity rest_against_finest;  // its drops at rest or not against the finest step's
@@ -34,7 +34,6 @@ struct Row {
   std::uint64_t repose_no_rest = 0;
   std::vector<std::uint64_t> repose_hist;
   std::vector<Vec3> pose_normals;
-  double margin = 0;
   std::vector<BulletRun> bullet;  // one per step, coarsest first
   std::size_t chosen = 0;         // Bullet's step: its cheapest trustworthy one
   const BulletRun& best() const { return bullet[chosen]; }
