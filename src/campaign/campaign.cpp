@@ -8,6 +8,7 @@
 #include <exception>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <thread>
@@ -49,17 +50,18 @@ struct RootState {
   std::vector<PosesStudy> studies;
   std::vector<std::vector<DropRange>> remaining;
   std::vector<double> cost_per_drop;
-  // The first particle's model, kept for the root's own work so that a single scan is not loaded twice (a
-  // 200,000-triangle scan's set-up is most of a quasi-static study); the others are loaded again when run, so
-  // that a library of scans does not stay in memory at once.
-  std::unique_ptr<ParticleModel> first_model;
+  // One particle's model, kept for the root's own work so that a single scan is not loaded twice (a
+  // 200,000-triangle scan's set-up is most of a quasi-static study): the costliest per drop, whose items the
+  // plan puts first. The others are loaded again when run, so that a library of scans is never all in memory.
+  std::unique_ptr<ParticleModel> kept_model;
+  std::uint32_t kept_index = 0;
 };
 
 // One particle's part of the root's preparation: its study so far (from the checkpoint) and what is left.
-// `keep`: where to leave the model (null: drop it).
-void prepare_particle(const CampaignParticle& p, const CampaignOptions& options, PosesStudy& study,
-                      std::vector<DropRange>& left, double& cost_per_drop,
-                      std::unique_ptr<ParticleModel>* keep) {
+// Returns the model.
+std::unique_ptr<ParticleModel> prepare_particle(const CampaignParticle& p, const CampaignOptions& options,
+                                                PosesStudy& study, std::vector<DropRange>& left,
+                                                double& cost_per_drop) {
   std::unique_ptr<ParticleModel> model = load_model(p, options.settings);
   study = model->header;
   left = {options.drops};
@@ -78,7 +80,7 @@ void prepare_particle(const CampaignParticle& p, const CampaignOptions& options,
   // The engine's cost per step grows with the hull's size; smooth particles also take more steps.
   const double hull = static_cast<double>(model->particle.hull.vertices.size());
   cost_per_drop = hull * (model->header.smooth ? 4.0 : 1.0);
-  if (keep) *keep = std::move(model);
+  return model;
 }
 
 // The particles are prepared in parallel (a library of large scans loads much faster); the error reported is
@@ -90,12 +92,21 @@ RootState prepare_root(const std::vector<CampaignParticle>& particles, const Cam
   state.remaining.resize(n);
   state.cost_per_drop.resize(n);
   std::vector<std::exception_ptr> errors(n);
+  std::mutex keeping;
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] {
     tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
       try {
-        prepare_particle(particles[i], options, state.studies[i], state.remaining[i], state.cost_per_drop[i],
-                         i == 0 ? &state.first_model : nullptr);
+        std::unique_ptr<ParticleModel> model = prepare_particle(particles[i], options, state.studies[i],
+                                                                state.remaining[i], state.cost_per_drop[i]);
+        const auto index = static_cast<std::uint32_t>(i);
+        const std::lock_guard lock(keeping);
+        const double kept_cost = state.kept_model ? state.cost_per_drop[state.kept_index] : -1.0;
+        if (state.cost_per_drop[i] > kept_cost ||
+            (state.cost_per_drop[i] == kept_cost && index < state.kept_index)) {
+          state.kept_model = std::move(model);
+          state.kept_index = index;
+        }
       } catch (...) {
         errors[i] = std::current_exception();
       }
@@ -154,8 +165,8 @@ std::vector<PosesStudy> run_campaign(const std::function<std::vector<CampaignPar
                           : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   // Any rank: the model of a particle. The last one is kept, since items of one particle mostly follow each
   // other.
-  std::uint32_t cached_index = 0;
-  std::unique_ptr<ParticleModel> cached = std::move(state.first_model);  // the root's, or none
+  std::uint32_t cached_index = state.kept_index;
+  std::unique_ptr<ParticleModel> cached = std::move(state.kept_model);  // the root's, or none
   const auto model_of = [&](std::uint32_t index) -> const ParticleModel& {
     if (index >= particles.size()) throw Error("work item for an unknown particle");
     if (!cached || cached_index != index) {

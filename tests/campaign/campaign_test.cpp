@@ -74,6 +74,24 @@ class InterruptedRunner final : public LocalRunner {
   std::size_t limit_;
 };
 
+// Runs the items one particle after another, in the particles' order or the reverse, so that the first item
+// the root runs is of either particle (the root keeps one particle's model from its checks for its own work).
+class ParticleOrderRunner final : public LocalRunner {
+ public:
+  explicit ParticleOrderRunner(bool reverse) : reverse_(reverse) {}
+  void run(const std::vector<WorkItem>& items, const Work& work, const Absorb& absorb,
+           std::atomic<std::uint64_t>* progress) override {
+    std::vector<WorkItem> order = items;
+    std::stable_sort(order.begin(), order.end(), [&](const WorkItem& a, const WorkItem& b) {
+      return reverse_ ? a.particle > b.particle : a.particle < b.particle;
+    });
+    for (const WorkItem& item : order) absorb(item, work(item, progress));
+  }
+
+ private:
+  bool reverse_;
+};
+
 class Campaign : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -103,6 +121,18 @@ TEST_F(Campaign, ItemsInAnyOrderGiveTheSingleRunExactly) {
     const PosesStudy reference = single_run(particles_[p].source, options_.settings, options_.drops);
     EXPECT_EQ(without_timing(studies[p]), without_timing(reference)) << particles_[p].source;
     ASSERT_EQ(studies[p].tally.ranges.size(), 1u);  // the items coalesced into one range
+  }
+}
+
+TEST_F(Campaign, EitherParticleFirstGivesTheSingleRunsExactly) {
+  for (const bool reverse : {false, true}) {
+    ParticleOrderRunner runner(reverse);
+    const auto studies = run_campaign([&] { return particles_; }, options_, runner);
+    ASSERT_EQ(studies.size(), 2u);
+    for (std::size_t p = 0; p < 2; ++p)
+      EXPECT_EQ(without_timing(studies[p]),
+                without_timing(single_run(particles_[p].source, options_.settings, options_.drops)))
+          << particles_[p].source << (reverse ? ", last particle first" : ", first particle first");
   }
 }
 
