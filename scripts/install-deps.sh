@@ -4,6 +4,7 @@
 set -euo pipefail
 packages=(
   g++ cmake make pkg-config git
+  gfortran  # the Fortran module over the C API (bindings/fortran/) and its example
   libeigen3-dev libboost-dev libcli11-dev nlohmann-json3-dev libqhull-dev libtbb-dev librandom123-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcgal-dev  # --repair: CGAL Polygon Mesh Processing (header-only; GPL-3+)

@@ -93,7 +93,7 @@ void Engine::start_frictional(const Motion& motion) { phase_.emplace<FrictionalC
 
 void Engine::stop(Status why) {
   const Sample now = sample();  // the motion it had, as the phase it stops reports it
-  phase_.emplace<Stopped>(Stopped{why, now.omega, now.contact_count, now.kinetic_energy});
+  phase_.emplace<Stopped>(Stopped{why, now.omega, now.contact_count, now.kinetic_energy, now.velocity});
 }
 
 bool Engine::advance_to(double time) {
@@ -123,14 +123,19 @@ Sample Engine::sample() const {
   s.orientation = run_.q;
   s.com = run_.com;
   s.contact = run_.record.type();
-  std::visit(Overloaded{[&](const Flight& f) { s.omega = f.omega(); },
+  std::visit(Overloaded{[&](const Flight& f) {
+                          s.omega = f.omega();
+                          s.velocity = f.velocity();
+                        },
                         [&](const Contact& c) {
-                          s.omega = c.omega();
+                          s.omega = c.omega();  // a rotation about the support: v = ω × (com − pivot)
+                          s.velocity = c.omega().cross(run_.com - c.support().world);
                           s.contact_count = c.contact_count();
                         },
                         [&](const FrictionalContact& c) {
                           s.contact = c.contact_type();  // its first segment may not have begun yet
                           s.omega = c.omega();
+                          s.velocity = c.velocity();
                           s.contact_count = c.contact_count();
                           s.sticking = c.sticking();
                           s.sliding = c.sliding();
@@ -138,6 +143,7 @@ Sample Engine::sample() const {
                         [&](const Rest& r) { s.contact_count = r.contact_count; },
                         [&](const Stopped& st) {
                           s.omega = st.omega;
+                          s.velocity = st.velocity;
                           s.contact_count = st.contact_count;
                         }},
              phase_);

@@ -42,8 +42,9 @@ const char* to_string(RestKind kind);
 struct Sample {
   double t = 0;               ///< time
   Quat orientation;           ///< body → world rotation
-  Vec3 omega = Vec3::Zero();  ///< angular velocity, world frame (rad/time)
-  Vec3 com = Vec3::Zero();    ///< centre of mass, world frame
+  Vec3 omega = Vec3::Zero();     ///< angular velocity, world frame (rad/time)
+  Vec3 com = Vec3::Zero();       ///< centre of mass, world frame
+  Vec3 velocity = Vec3::Zero();  ///< the centre of mass's velocity, world frame (length/time)
   ContactType contact = ContactType::free_fall;
   int contact_count = 0;  ///< hull vertices within ε of the wall
   /// With finite friction after the landing (the frictional contact phase): of the points pressed on the

@@ -38,6 +38,7 @@ struct Stopped {
   Vec3 omega = Vec3::Zero();
   int contact_count = 0;
   double kinetic_energy = 0;
+  Vec3 velocity = Vec3::Zero();  ///< the centre of mass's, when it stopped
 };
 
 }  // namespace repose::sim
