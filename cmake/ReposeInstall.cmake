@@ -19,6 +19,13 @@ if(TARGET repose_cli)
   install(TARGETS repose_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT cli)
 endif()
 
+if(TARGET repose_c)
+  # Component capi: the shared C library (the header is in include/repose) and the Fortran module's source,
+  # which a Fortran program compiles with its own compiler (module files are compiler-specific).
+  install(TARGETS repose_c LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT capi)
+  install(FILES bindings/fortran/repose.f90 DESTINATION ${CMAKE_INSTALL_DATADIR}/repose/fortran COMPONENT capi)
+endif()
+
 set(REPOSE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/repose)
 install(EXPORT reposeTargets NAMESPACE repose:: DESTINATION ${REPOSE_CMAKE_DIR})
 configure_package_config_file(cmake/reposeConfig.cmake.in ${CMAKE_CURRENT_BINARY_DIR}/reposeConfig.cmake

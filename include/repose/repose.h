@@ -79,6 +79,9 @@ typedef struct repose_params repose_params;
 typedef struct repose_settler repose_settler;
 typedef struct repose_poses repose_poses;
 
+/* REPOSE_C_API_VERSION of the library linked (a header and a library of different versions differ). */
+int repose_c_api_version(void);
+
 /* The last failure's message on this thread ("" if none); owned by repose. */
 const char* repose_last_error(void);
 /* "REPOSE_OK", "REPOSE_ERROR_BAD_MESH", ...; "unknown code" otherwise. A static string. */

@@ -20,6 +20,8 @@ int fail(int code, const char* function, const char* message) noexcept {
 
 extern "C" {
 
+int repose_c_api_version(void) { return REPOSE_C_API_VERSION; }
+
 const char* repose_last_error(void) { return repose::capi::last_message; }
 
 const char* repose_code_name(int code) {

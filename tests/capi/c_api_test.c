@@ -205,6 +205,7 @@ static void test_errors(void) {
 }
 
 int main(void) {
+  CHECK(repose_c_api_version() == REPOSE_C_API_VERSION);
   test_particle_and_poses();
   test_settle();
   test_errors();
