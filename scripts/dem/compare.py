@@ -1,0 +1,94 @@
+"""The DEM coupling example's table: Yade alone against Yade handing over to repose at first touch.
+
+  python3 scripts/dem/compare.py ALONE.json HANDOVER.json LIBREPOSE_C [--grains]
+
+Per grain (with --grains) and in total: the rest pose in each (same or not), the pose histogram, time to rest,
+the deepest overlap with the floor, the wall time. A grain's rest pose is a pose of repose's exact catalogue of
+its convex hull (stable hull faces, numbered by centre-of-mass height, 0 the lowest); a final orientation is in
+the pose whose down normal is nearest the grain's body-frame down direction (both runs mapped the same way;
+repose's own rest face is checked to give the same pose).
+"""
+import json
+import math
+import os
+import statistics
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import repose_capi  # noqa: E402
+
+
+def rotate_inverse(q, v):  # R(q)^T v for q = (w, x, y, z)
+    w, x, y, z = q
+    n = math.sqrt(w * w + x * x + y * y + z * z)
+    w, x, y, z = w / n, -x / n, -y / n, -z / n
+    # v' = q v q*, expanded
+    tx, ty, tz = 2 * (y * v[2] - z * v[1]), 2 * (z * v[0] - x * v[2]), 2 * (x * v[1] - y * v[0])
+    return (v[0] + w * tx + (y * tz - z * ty), v[1] + w * ty + (z * tx - x * tz), v[2] + w * tz + (x * ty - y * tx))
+
+
+def nearest_pose(poses, orientation):
+    down = rotate_inverse(orientation, (0.0, 0.0, -1.0))
+    dots = [sum(p.down_normal_body[k] * down[k] for k in range(3)) for p in poses]
+    best = max(range(len(poses)), key=lambda i: dots[i])
+    return best, math.degrees(math.acos(max(-1.0, min(1.0, dots[best]))))
+
+
+def main():
+    alone, handover = (json.load(open(p)) for p in sys.argv[1:3])
+    lib = repose_capi.Library(sys.argv[3])
+    show_grains = "--grains" in sys.argv
+    rows = []
+    for a, h in zip(alone["grains"], handover["grains"]):
+        particle = lib.convex_particle(a["vertices"], 2600.0, "grain")
+        poses, handle = lib.poses(particle)
+        yade_pose, yade_tilt = nearest_pose(poses, a["orientation"])
+        repose_pose, repose_tilt = nearest_pose(poses, h["orientation"])
+        if repose_pose != h["repose_pose"]:
+            sys.exit("grain %d: repose's rest face is pose %d, its orientation nearest pose %d"
+                     % (a["id"], h["repose_pose"], repose_pose))
+        rows.append({"grain": a["id"], "poses": len(poses), "yade": yade_pose, "yade_tilt": yade_tilt,
+                     "yade_rest": a["at_rest"], "repose": repose_pose, "repose_tilt": repose_tilt,
+                     "yade_time": a["rest_time"], "repose_time": h["rest_time"],
+                     "yade_overlap": a["max_overlap"] / a["length"], "handover_overlap": h["handover"]["overlap"],
+                     "repose_overlap": h["repose_penetration"], "length": a["length"]})
+        lib.lib.repose_poses_free(handle)
+        lib.lib.repose_particle_free(particle)
+
+    n = len(rows)
+    if show_grains:
+        print("grain  poses  Yade pose (tilt, rest)  repose pose (tilt)  same  time to rest Yade / repose (s)"
+              "  Yade max overlap (L)")
+        for r in rows:
+            print("%5d  %5d  %4d (%5.2f°, %-5s)    %4d (%5.2f°)      %-4s  %6.3f / %6.3f  %22.3f" % (
+                r["grain"], r["poses"], r["yade"], r["yade_tilt"], "yes" if r["yade_rest"] else "no", r["repose"],
+                r["repose_tilt"], "yes" if r["yade"] == r["repose"] else "no", r["yade_time"], r["repose_time"],
+                r["yade_overlap"]))
+        print()
+    same = sum(r["yade"] == r["repose"] for r in rows)
+    top = max(max(r["yade"], r["repose"]) for r in rows)
+    print("%d grains; Yade alone: dt %.0e s, %d steps, %.1f s simulated" % (
+        n, alone["dt"], alone["summary"]["steps"], alone["summary"]["simulated_time"]))
+    print("rest pose the same in both: %d of %d" % (same, n))
+    print("pose histogram (pose 0 = the lowest centre of mass of each grain):")
+    print("  pose  " + "".join("%6d" % k for k in range(top + 1)))
+    print("  Yade  " + "".join("%6d" % sum(r["yade"] == k for r in rows) for k in range(top + 1)))
+    print("  repose" + "".join("%6d" % sum(r["repose"] == k for r in rows) for k in range(top + 1)))
+    rested = sum(r["yade_rest"] for r in rows)
+    print("Yade alone at rest by %.1f s: %d of %d (kinetic energy below 1e-6 m g L for 0.05 s)" % (
+        alone["summary"]["simulated_time"], rested, n))
+    print("time to rest, median (s): Yade alone %.3f, handed over %.3f" % (
+        statistics.median(r["yade_time"] for r in rows if r["yade_rest"]),
+        statistics.median(r["repose_time"] for r in rows)))
+    print("deepest overlap with the floor (fraction of L): Yade alone median %.3f, max %.3f; handed over: "
+          "Yade's at hand-over max %.2e L, repose's max %.1e m" % (
+              statistics.median(r["yade_overlap"] for r in rows), max(r["yade_overlap"] for r in rows),
+              max(r["handover_overlap"] / r["length"] for r in rows), max(r["repose_overlap"] for r in rows)))
+    ya, yh, rh = (alone["summary"]["yade_wall_time"], handover["summary"]["yade_wall_time"],
+                  handover["summary"]["repose_wall_time"])
+    print("wall time (s): Yade alone %.1f; handed over %.1f (Yade to first touch %.1f + repose %.2f): %.0fx less" % (
+        ya, yh + rh, yh, rh, ya / (yh + rh)))
+
+
+if __name__ == "__main__":
+    main()
