@@ -52,7 +52,7 @@ extern "C" {
 
 /* Inertia models (repose_mesh_options.inertia): where the mass is. */
 #define REPOSE_INERTIA_EXACT 0  /* the closed solid the surface bounds, density per volume (default) */
-#define REPOSE_INERTIA_CONVEX 1 /* the solid convex hull of the vertices: any triangle soup or point cloud */
+#define REPOSE_INERTIA_CONVEX 1 /* the solid convex hull of the vertices: triangle soups, point clouds */
 #define REPOSE_INERTIA_SHELL 2  /* mass on the surface, density per unit area: thin-walled parts */
 
 /* How a run stands or ended (repose_settler_status, repose_result.status). */
@@ -91,11 +91,11 @@ const char* repose_code_name(int code);
 
 /* How a mesh becomes a particle. Fill it with repose_mesh_options_init, then change what differs. */
 typedef struct repose_mesh_options {
-  double scale;           /* every coordinate is multiplied by this first (a file in mm, run in m: 0.001) */
-  int inertia;            /* REPOSE_INERTIA_EXACT, _CONVEX or _SHELL */
-  int repair;             /* nonzero: mend holes, winding and duplicates first */
-  int largest_component;  /* nonzero: keep only the largest connected component (implies repair) */
-  int has_center_of_mass; /* nonzero: center_of_mass is the known centre of mass, not the uniform one */
+  double scale;             /* every coordinate is multiplied by this first (a file in mm, run in m: 0.001) */
+  int inertia;              /* REPOSE_INERTIA_EXACT, _CONVEX or _SHELL */
+  int repair;               /* nonzero: mend holes, winding and duplicates first */
+  int largest_component;    /* nonzero: keep only the largest connected component (implies repair) */
+  int has_center_of_mass;   /* nonzero: center_of_mass is the known centre of mass, not the uniform one */
   double center_of_mass[3]; /* in the input's coordinates (times scale); must lie inside the convex hull */
 } repose_mesh_options;
 
@@ -149,9 +149,9 @@ int repose_params_get_number(const repose_params* params, const char* name, doub
 
 /* The full state of a rigid body, as a DEM code has it. */
 typedef struct repose_state {
-  double position[3];         /* centre of mass, world frame (length) */
-  double orientation[4];      /* unit quaternion w, x, y, z: body -> world (any nonzero length is normalised) */
-  double velocity[3];         /* of the centre of mass, world frame (length/time) */
+  double position[3];    /* centre of mass, world frame (length) */
+  double orientation[4]; /* unit quaternion w, x, y, z: body -> world (any nonzero length is normalised) */
+  double velocity[3];    /* of the centre of mass, world frame (length/time) */
   double angular_velocity[3]; /* world frame (rad/time) */
 } repose_state;
 
@@ -160,8 +160,8 @@ typedef struct repose_state {
  * paper. A lowest point up to the contact band (contact_threshold * L) below the floor, as an overlap-based
  * DEM code leaves a grain at first touch, is lifted onto the floor (repose_result.lift says by how much);
  * deeper is REPOSE_ERROR_BAD_STATE. The settler's clock starts at 0. */
-int repose_settler_new(const repose_particle* particle, const repose_params* params, const repose_state* start,
-                       double floor_height, repose_settler** settler);
+int repose_settler_new(const repose_particle* particle, const repose_params* params,
+                       const repose_state* start, double floor_height, repose_settler** settler);
 void repose_settler_free(repose_settler* settler);
 
 /* One step (shorter if an event is inside it). `running` (may be NULL): 0 once the run has ended. */
@@ -207,7 +207,7 @@ int repose_settler_result(const repose_settler* settler, repose_result* result);
 int repose_settle(const repose_particle* particle, const repose_params* params, const repose_state* start,
                   double floor_height, repose_result* result);
 
-/* ---- Rest poses (quasi-static, exact) ------------------------------------------------------------------- */
+/* ---- Rest poses (quasi-static, exact) ------------------------------------------------------------- */
 
 /* The particle's rest-pose catalogue: its stable hull faces (merged by topological persistence, a length;
  * negative: repose's default, 0 for faceted particles and 1 % of L for smooth ones), each with its exact
@@ -219,8 +219,8 @@ typedef struct repose_pose {
   int face;                   /* the pose's lowest stable hull face */
   double down_normal_body[3]; /* body-frame outward normal of `face`, pointing at the floor at rest */
   double com_height;          /* centre of mass above the floor at rest (length) */
-  double barrier;             /* centre-of-mass height at the lowest saddle out of the pose (length; inf: none) */
-  double probability;         /* quasi-static probability; the poses' sum to 1 */
+  double barrier;     /* centre-of-mass height at the lowest saddle out of the pose (length; inf: none) */
+  double probability; /* quasi-static probability; the poses' sum to 1 */
 } repose_pose;
 
 int repose_poses_count(const repose_poses* poses, int* count);

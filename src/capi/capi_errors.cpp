@@ -26,17 +26,28 @@ const char* repose_last_error(void) { return repose::capi::last_message; }
 
 const char* repose_code_name(int code) {
   switch (code) {
-    case REPOSE_OK: return "REPOSE_OK";
-    case REPOSE_ERROR_NULL_POINTER: return "REPOSE_ERROR_NULL_POINTER";
-    case REPOSE_ERROR_FILE: return "REPOSE_ERROR_FILE";
-    case REPOSE_ERROR_BAD_MESH: return "REPOSE_ERROR_BAD_MESH";
-    case REPOSE_ERROR_BAD_PARAMETER: return "REPOSE_ERROR_BAD_PARAMETER";
-    case REPOSE_ERROR_BAD_STATE: return "REPOSE_ERROR_BAD_STATE";
-    case REPOSE_ERROR_BAD_INDEX: return "REPOSE_ERROR_BAD_INDEX";
-    case REPOSE_ERROR_BUFFER_TOO_SMALL: return "REPOSE_ERROR_BUFFER_TOO_SMALL";
-    case REPOSE_ERROR_OUT_OF_MEMORY: return "REPOSE_ERROR_OUT_OF_MEMORY";
-    case REPOSE_ERROR_INTERNAL: return "REPOSE_ERROR_INTERNAL";
-    default: return "unknown code";
+    case REPOSE_OK:
+      return "REPOSE_OK";
+    case REPOSE_ERROR_NULL_POINTER:
+      return "REPOSE_ERROR_NULL_POINTER";
+    case REPOSE_ERROR_FILE:
+      return "REPOSE_ERROR_FILE";
+    case REPOSE_ERROR_BAD_MESH:
+      return "REPOSE_ERROR_BAD_MESH";
+    case REPOSE_ERROR_BAD_PARAMETER:
+      return "REPOSE_ERROR_BAD_PARAMETER";
+    case REPOSE_ERROR_BAD_STATE:
+      return "REPOSE_ERROR_BAD_STATE";
+    case REPOSE_ERROR_BAD_INDEX:
+      return "REPOSE_ERROR_BAD_INDEX";
+    case REPOSE_ERROR_BUFFER_TOO_SMALL:
+      return "REPOSE_ERROR_BUFFER_TOO_SMALL";
+    case REPOSE_ERROR_OUT_OF_MEMORY:
+      return "REPOSE_ERROR_OUT_OF_MEMORY";
+    case REPOSE_ERROR_INTERNAL:
+      return "REPOSE_ERROR_INTERNAL";
+    default:
+      return "unknown code";
   }
 }
 

@@ -18,7 +18,8 @@ std::string accepted() {
   std::string names;
   for (const repose::ParamInfo& info : repose::param_table()) {
     const std::string n = info.name;
-    if (n == "drop_height" || n == "drop_speed" || std::holds_alternative<repose::Vec3 repose::SettleParams::*>(info.member))
+    if (n == "drop_height" || n == "drop_speed" ||
+        std::holds_alternative<repose::Vec3 repose::SettleParams::*>(info.member))
       continue;
     names += (names.empty() ? "" : ", ") + n;
   }
@@ -33,7 +34,8 @@ const repose::ParamInfo& settable(const char* name) {
                      "'" + n + "' is part of the start state: give it in repose_settler_new's start");
   const repose::ParamInfo* info = repose::find_param(n);
   if (info == nullptr || std::holds_alternative<repose::Vec3 repose::SettleParams::*>(info->member))
-    throw CodedError(REPOSE_ERROR_BAD_PARAMETER, "unknown parameter '" + n + "' (accepted: " + accepted() + ")");
+    throw CodedError(REPOSE_ERROR_BAD_PARAMETER,
+                     "unknown parameter '" + n + "' (accepted: " + accepted() + ")");
   return *info;
 }
 
@@ -43,8 +45,8 @@ Int whole(const repose::ParamInfo& info, double value) {
   if (!(value == std::floor(value)) || std::fabs(value) > 9.0e15 ||
       value < static_cast<double>(std::numeric_limits<Int>::min()) ||
       value > static_cast<double>(std::numeric_limits<Int>::max()))
-    throw CodedError(REPOSE_ERROR_BAD_PARAMETER,
-                     std::string("parameter ") + info.name + " must be a whole number, got " + std::to_string(value));
+    throw CodedError(REPOSE_ERROR_BAD_PARAMETER, std::string("parameter ") + info.name +
+                                                     " must be a whole number, got " + std::to_string(value));
   return static_cast<Int>(value);
 }
 
@@ -80,8 +82,9 @@ int repose_params_new(int units, repose_params** params) {
   return guarded("repose_params_new", REPOSE_ERROR_BAD_PARAMETER, [&] {
     require(params, "params");
     if (units != REPOSE_UNITS_SI && units != REPOSE_UNITS_CGS)
-      throw CodedError(REPOSE_ERROR_BAD_PARAMETER,
-                       "units must be REPOSE_UNITS_SI (0) or REPOSE_UNITS_CGS (1), got " + std::to_string(units));
+      throw CodedError(
+          REPOSE_ERROR_BAD_PARAMETER,
+          "units must be REPOSE_UNITS_SI (0) or REPOSE_UNITS_CGS (1), got " + std::to_string(units));
     auto* out = new repose_params{};
     out->params.gravity =
         repose::standard_gravity(units == REPOSE_UNITS_SI ? repose::UnitSystem::si : repose::UnitSystem::cgs);
@@ -126,21 +129,23 @@ int repose_params_get_number(const repose_params* params, const char* name, doub
     require(name, "name");
     require(value, "value");
     const repose::ParamInfo* info = repose::find_param(name);
-    if (info == nullptr) throw CodedError(REPOSE_ERROR_BAD_PARAMETER, std::string("unknown parameter '") + name + "'");
+    if (info == nullptr)
+      throw CodedError(REPOSE_ERROR_BAD_PARAMETER, std::string("unknown parameter '") + name + "'");
     const repose::SettleParams& p = params->params;
-    *value = std::visit(repose::Overloaded{
-                            [&](double repose::SettleParams::*m) { return p.*m; },
-                            [&](long repose::SettleParams::*m) { return static_cast<double>(p.*m); },
-                            [&](int repose::SettleParams::*m) { return static_cast<double>(p.*m); },
-                            [&](repose::Vec3 repose::SettleParams::*) -> double {
-                              throw CodedError(REPOSE_ERROR_BAD_PARAMETER,
-                                               std::string("parameter ") + info->name + " is not a number");
-                            },
-                            [&](const repose::ParamChoice&) -> double {
-                              throw CodedError(REPOSE_ERROR_BAD_PARAMETER,
-                                               std::string("parameter ") + info->name + " is a choice, not a number");
-                            }},
-                        info->member);
+    *value = std::visit(
+        repose::Overloaded{[&](double repose::SettleParams::*m) { return p.*m; },
+                           [&](long repose::SettleParams::*m) { return static_cast<double>(p.*m); },
+                           [&](int repose::SettleParams::*m) { return static_cast<double>(p.*m); },
+                           [&](repose::Vec3 repose::SettleParams::*) -> double {
+                             throw CodedError(REPOSE_ERROR_BAD_PARAMETER,
+                                              std::string("parameter ") + info->name + " is not a number");
+                           },
+                           [&](const repose::ParamChoice&) -> double {
+                             throw CodedError(
+                                 REPOSE_ERROR_BAD_PARAMETER,
+                                 std::string("parameter ") + info->name + " is a choice, not a number");
+                           }},
+        info->member);
   });
 }
 

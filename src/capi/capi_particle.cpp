@@ -23,9 +23,15 @@ repose::MeshOptions mesh_options(const repose_mesh_options* c) {
                      "options.scale must be a finite number > 0, got " + std::to_string(c->scale));
   o.scale = c->scale;
   switch (c->inertia) {
-    case REPOSE_INERTIA_EXACT: o.inertia = repose::InertiaModel::exact; break;
-    case REPOSE_INERTIA_CONVEX: o.inertia = repose::InertiaModel::convex; break;
-    case REPOSE_INERTIA_SHELL: o.inertia = repose::InertiaModel::shell; break;
+    case REPOSE_INERTIA_EXACT:
+      o.inertia = repose::InertiaModel::exact;
+      break;
+    case REPOSE_INERTIA_CONVEX:
+      o.inertia = repose::InertiaModel::convex;
+      break;
+    case REPOSE_INERTIA_SHELL:
+      o.inertia = repose::InertiaModel::shell;
+      break;
     default:
       throw CodedError(REPOSE_ERROR_BAD_PARAMETER,
                        "options.inertia must be REPOSE_INERTIA_EXACT, _CONVEX or _SHELL (0, 1, 2), got " +
@@ -105,7 +111,8 @@ int repose_particle_from_arrays(const double* vertices, size_t vertex_count, con
       mesh.triangles.push_back(t);
     }
     const repose::MeshOptions o = mesh_options(options);
-    auto model = std::make_shared<const repose::Particle>(repose::make_particle(std::move(mesh), label, density, o));
+    auto model =
+        std::make_shared<const repose::Particle>(repose::make_particle(std::move(mesh), label, density, o));
     *particle = new repose_particle{std::move(model)};
   });
 }

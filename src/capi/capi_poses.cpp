@@ -62,8 +62,8 @@ int repose_poses_of_face(const repose_poses* poses, int face, int* pose) {
     require(pose, "pose");
     const auto n = static_cast<int>(poses->catalog.face_pose.size());
     if (face < 0 || face >= n)
-      throw CodedError(REPOSE_ERROR_BAD_INDEX,
-                       "face " + std::to_string(face) + " is not a hull face: there are " + std::to_string(n));
+      throw CodedError(REPOSE_ERROR_BAD_INDEX, "face " + std::to_string(face) +
+                                                   " is not a hull face: there are " + std::to_string(n));
     *pose = poses->catalog.face_pose[static_cast<std::size_t>(face)];
   });
 }

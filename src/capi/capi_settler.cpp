@@ -44,11 +44,12 @@ void put(const Quat& q, double (&out)[4]) {
 
 void check_finite(const double* x, int n, const char* what) {
   for (int k = 0; k < n; ++k)
-    if (!std::isfinite(x[k])) throw CodedError(REPOSE_ERROR_BAD_STATE, std::string("start: ") + what + " is not finite");
+    if (!std::isfinite(x[k]))
+      throw CodedError(REPOSE_ERROR_BAD_STATE, std::string("start: ") + what + " is not finite");
 }
 
-// The start state as the engine takes it: the lowest point's height above the floor and the motion. The engine
-// places the centre of mass above the origin; `offset` takes its frame back to the caller's world.
+// The start state as the engine takes it: the lowest point's height above the floor and the motion. The
+// engine places the centre of mass above the origin; `offset` takes its frame back to the caller's world.
 void begin(repose_settler& s, const repose_state& start, double floor_height) {
   check_finite(start.position, 3, "position");
   check_finite(start.orientation, 4, "orientation");
@@ -91,8 +92,8 @@ const repose_settler& valid(const repose_settler* settler) {
 
 extern "C" {
 
-int repose_settler_new(const repose_particle* particle, const repose_params* params, const repose_state* start,
-                       double floor_height, repose_settler** settler) {
+int repose_settler_new(const repose_particle* particle, const repose_params* params,
+                       const repose_state* start, double floor_height, repose_settler** settler) {
   return guarded("repose_settler_new", REPOSE_ERROR_BAD_PARAMETER, [&] {
     require(particle, "particle");
     require(params, "params");
@@ -188,7 +189,8 @@ int repose_settler_contact_points(const repose_settler* settler, double* points,
       for (int k = 0; k < 3; ++k) points[3 * i + static_cast<size_t>(k)] = found[i][k] + s.offset[k];
     if (capacity < found.size())
       throw CodedError(REPOSE_ERROR_BUFFER_TOO_SMALL, "points has room for " + std::to_string(capacity) +
-                                                          " points, there are " + std::to_string(found.size()));
+                                                          " points, there are " +
+                                                          std::to_string(found.size()));
   });
 }
 

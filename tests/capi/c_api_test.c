@@ -21,24 +21,24 @@ static int failures = 0;
   } while (0)
 
 /* A call that must succeed. */
-#define OK(call)                                                                               \
-  do {                                                                                         \
-    int code_ = (call);                                                                        \
-    if (code_ != REPOSE_OK) {                                                                  \
-      fprintf(stderr, "%s:%d: %s: %s\n", __FILE__, __LINE__, #call, repose_last_error());     \
-      exit(1);                                                                                 \
-    }                                                                                          \
+#define OK(call)                                                                          \
+  do {                                                                                    \
+    int code_ = (call);                                                                   \
+    if (code_ != REPOSE_OK) {                                                             \
+      fprintf(stderr, "%s:%d: %s: %s\n", __FILE__, __LINE__, #call, repose_last_error()); \
+      exit(1);                                                                            \
+    }                                                                                     \
   } while (0)
 
 /* A call that must fail with `code` and a message that contains `text`. */
-#define FAILS(call, code, text)                                                                   \
-  do {                                                                                            \
-    int code_ = (call);                                                                           \
-    if (code_ != (code) || strstr(repose_last_error(), (text)) == NULL) {                         \
-      fprintf(stderr, "%s:%d: %s: got %s \"%s\", expected %s with \"%s\"\n", __FILE__, __LINE__, \
-              #call, repose_code_name(code_), repose_last_error(), #code, (text));                \
-      ++failures;                                                                                 \
-    }                                                                                             \
+#define FAILS(call, code, text)                                                                         \
+  do {                                                                                                  \
+    int code_ = (call);                                                                                 \
+    if (code_ != (code) || strstr(repose_last_error(), (text)) == NULL) {                               \
+      fprintf(stderr, "%s:%d: %s: got %s \"%s\", expected %s with \"%s\"\n", __FILE__, __LINE__, #call, \
+              repose_code_name(code_), repose_last_error(), #code, (text));                             \
+      ++failures;                                                                                       \
+    }                                                                                                   \
   } while (0)
 
 static const double cube_vertices[] = {-1, -1, -1, 1, -1, -1, 1, 1, -1, -1, 1, -1,
@@ -147,7 +147,8 @@ static void test_errors(void) {
 
   /* Null pointers: each named. */
   FAILS(repose_particle_load(NULL, 1, NULL, &particle), REPOSE_ERROR_NULL_POINTER, "source is NULL");
-  FAILS(repose_particle_load("box:x=2,y=2,z=2", 1, NULL, NULL), REPOSE_ERROR_NULL_POINTER, "particle is NULL");
+  FAILS(repose_particle_load("box:x=2,y=2,z=2", 1, NULL, NULL), REPOSE_ERROR_NULL_POINTER,
+        "particle is NULL");
   FAILS(repose_params_new(REPOSE_UNITS_SI, NULL), REPOSE_ERROR_NULL_POINTER, "params is NULL");
   FAILS(repose_settler_step(NULL, NULL), REPOSE_ERROR_NULL_POINTER, "settler is NULL");
   FAILS(repose_poses_count(NULL, NULL), REPOSE_ERROR_NULL_POINTER, "poses is NULL");
@@ -166,16 +167,19 @@ static void test_errors(void) {
         REPOSE_ERROR_BAD_PARAMETER, "density must be a finite number > 0");
   OK(repose_mesh_options_init(&options));
   options.inertia = 7;
-  FAILS(repose_particle_load("box:x=2,y=2,z=2", 1, &options, &particle), REPOSE_ERROR_BAD_PARAMETER, "options.inertia");
+  FAILS(repose_particle_load("box:x=2,y=2,z=2", 1, &options, &particle), REPOSE_ERROR_BAD_PARAMETER,
+        "options.inertia");
   CHECK(particle == NULL); /* no handle on failure */
 
   /* Bad parameters: unknown, out of range, of the start state, a choice given as a number. */
   OK(repose_params_new(REPOSE_UNITS_CGS, &params));
   FAILS(repose_params_new(5, &params), REPOSE_ERROR_BAD_PARAMETER, "units must be");
-  FAILS(repose_params_set_number(params, "dampign", 1), REPOSE_ERROR_BAD_PARAMETER, "unknown parameter 'dampign'");
+  FAILS(repose_params_set_number(params, "dampign", 1), REPOSE_ERROR_BAD_PARAMETER,
+        "unknown parameter 'dampign'");
   FAILS(repose_params_set_number(params, "restitution", 1.5), REPOSE_ERROR_BAD_PARAMETER, "restitution");
   FAILS(repose_params_set_number(params, "velocity", 1), REPOSE_ERROR_BAD_PARAMETER, "start state");
-  FAILS(repose_params_set_number(params, "integrator", 1), REPOSE_ERROR_BAD_PARAMETER, "repose_params_set_text");
+  FAILS(repose_params_set_number(params, "integrator", 1), REPOSE_ERROR_BAD_PARAMETER,
+        "repose_params_set_text");
   FAILS(repose_params_set_text(params, "integrator", "euler"), REPOSE_ERROR_BAD_PARAMETER, "euler");
   FAILS(repose_params_set_text(params, "damping", "0.1x"), REPOSE_ERROR_BAD_PARAMETER, "must be a number");
   FAILS(repose_params_set_number(params, "max_steps", 2.5), REPOSE_ERROR_BAD_PARAMETER, "whole number");
@@ -184,10 +188,12 @@ static void test_errors(void) {
   /* Bad states: not finite, a zero quaternion, deeper than the band below the floor. */
   OK(repose_particle_load("box:x=2,y=2,z=2", 1, NULL, &particle));
   start.velocity[0] = NAN;
-  FAILS(repose_settler_new(particle, params, &start, 0, &settler), REPOSE_ERROR_BAD_STATE, "velocity is not finite");
+  FAILS(repose_settler_new(particle, params, &start, 0, &settler), REPOSE_ERROR_BAD_STATE,
+        "velocity is not finite");
   start.velocity[0] = 0;
   start.orientation[0] = 0;
-  FAILS(repose_settler_new(particle, params, &start, 0, &settler), REPOSE_ERROR_BAD_STATE, "nonzero quaternion");
+  FAILS(repose_settler_new(particle, params, &start, 0, &settler), REPOSE_ERROR_BAD_STATE,
+        "nonzero quaternion");
   start.orientation[0] = 1;
   FAILS(repose_settler_new(particle, params, &start, 5, &settler), REPOSE_ERROR_BAD_STATE, "below the floor");
   FAILS(repose_settler_new(particle, params, &start, INFINITY, &settler), REPOSE_ERROR_BAD_STATE,

@@ -126,7 +126,8 @@ TEST(CApi, TheStateVelocityIsTheDerivativeOfThePosition) {
   Handles h;
   make(h, "box:x=0.01,y=0.02,z=0.03", 0, INFINITY);  // the paper's phase: a rotation about the contact
   const Particle p = load_particle("box:x=0.01,y=0.02,z=0.03", 2650);
-  const repose_state start = state({0, 0, 0.02}, Quat(0.9, 0.3, -0.2, 0.1).normalized(), Vec3::Zero(), Vec3::Zero());
+  const repose_state start =
+      state({0, 0, 0.02}, Quat(0.9, 0.3, -0.2, 0.1).normalized(), Vec3::Zero(), Vec3::Zero());
   const auto at = [&](double t) {
     repose_settler* s = nullptr;
     EXPECT_EQ(repose_settler_new(h.particle, h.params, &start, 0, &s), REPOSE_OK);
@@ -152,7 +153,8 @@ TEST(CApi, TheStateVelocityIsTheDerivativeOfThePosition) {
     const Vec3 w(now.angular_velocity[0], now.angular_velocity[1], now.angular_velocity[2]);
     const Mat3 R = Quat(now.orientation[0], now.orientation[1], now.orientation[2], now.orientation[3])
                        .toRotationMatrix();
-    const double energy = 0.5 * p.mass.mass * v.squaredNorm() + 0.5 * w.dot(R * p.mass.inertia * R.transpose() * w);
+    const double energy =
+        0.5 * p.mass.mass * v.squaredNorm() + 0.5 * w.dot(R * p.mass.inertia * R.transpose() * w);
     repose_settler* s = nullptr;
     ASSERT_EQ(repose_settler_new(h.particle, h.params, &start, 0, &s), REPOSE_OK);
     repose_settler_advance_to(s, t, nullptr);
@@ -200,7 +202,8 @@ TEST(CApi, HandlesWorkFromSeveralThreads) {
     repose_params* params = nullptr;
     repose_params_new(REPOSE_UNITS_SI, &params);
     repose_params_set_number(params, "restitution", 0.1 * i);
-    const repose_state start = state({0, 0, 1.0 + i}, Quat(1, 0.1 * i, 0.2, -0.3).normalized(), Vec3::Zero(), Vec3(1, 0, 0));
+    const repose_state start =
+        state({0, 0, 1.0 + i}, Quat(1, 0.1 * i, 0.2, -0.3).normalized(), Vec3::Zero(), Vec3(1, 0, 0));
     repose_settle(particle, params, &start, 0, &out);
     const char* const names[] = {"x0", "x1", "x2", "x3"};
     repose_params_set_number(params, names[i], 1);  // fails: no such parameter
@@ -219,7 +222,8 @@ TEST(CApi, HandlesWorkFromSeveralThreads) {
     EXPECT_EQ(std::memcmp(alone[i].orientation, together[i].orientation, sizeof alone[i].orientation), 0);
     EXPECT_EQ(alone[i].steps, together[i].steps);
     EXPECT_EQ(errors_together[i], errors[i]);
-    EXPECT_NE(errors[i].find("unknown parameter 'x" + std::to_string(i) + "'"), std::string::npos) << errors[i];
+    EXPECT_NE(errors[i].find("unknown parameter 'x" + std::to_string(i) + "'"), std::string::npos)
+        << errors[i];
   }
   repose_particle_free(particle);
 }

@@ -40,8 +40,8 @@ const char* to_string(RestKind kind);
 
 /// One instant of a run, as reported to observers and written to the time-series CSV.
 struct Sample {
-  double t = 0;               ///< time
-  Quat orientation;           ///< body → world rotation
+  double t = 0;                  ///< time
+  Quat orientation;              ///< body → world rotation
   Vec3 omega = Vec3::Zero();     ///< angular velocity, world frame (rad/time)
   Vec3 com = Vec3::Zero();       ///< centre of mass, world frame
   Vec3 velocity = Vec3::Zero();  ///< the centre of mass's velocity, world frame (length/time)
