@@ -74,6 +74,18 @@ def main():
     print("  pose  " + "".join("%6d" % k for k in range(top + 1)))
     print("  Yade  " + "".join("%6d" % sum(r["yade"] == k for r in rows) for k in range(top + 1)))
     print("  repose" + "".join("%6d" % sum(r["repose"] == k for r in rows) for k in range(top + 1)))
+    settled = [r for r in rows if r["yade_rest"]]
+    print("  the same among the grains Yade settled: %d of %d" % (sum(r["yade"] == r["repose"] for r in settled),
+                                                                  len(settled)))
+    # Pearson's chi-square on the histograms, poses 3 and up pooled (expected counts >= 5): 3 degrees of freedom.
+    try:
+        from scipy.stats import chi2_contingency
+        table = [[sum(r[side] == k for r in rows) for k in range(3)] + [sum(r[side] >= 3 for r in rows)]
+                 for side in ("yade", "repose")]
+        chi2, p, dof = chi2_contingency(table)[:3]
+        print("  histograms (poses 0, 1, 2, 3+): chi-square %.2f, %d degrees of freedom, p = %.2f" % (chi2, dof, p))
+    except ImportError:
+        pass
     rested = sum(r["yade_rest"] for r in rows)
     print("Yade alone at rest by %.1f s: %d of %d (kinetic energy below 1e-6 m g L for 0.05 s)" % (
         alone["summary"]["simulated_time"], rested, n))

@@ -167,6 +167,53 @@ TEST(CApi, TheStateVelocityIsTheDerivativeOfThePosition) {
   EXPECT_GE(rotating, 2);  // the times straddle the fall and the rotation
 }
 
+// While a run goes on, the points on the floor are the hull vertices within the contact band (ε·L) of the
+// floor (the engine's count within one, its set being updated at its steps' ends); at rest, the support, on
+// the floor.
+TEST(CApi, ContactPointsAreTheVerticesInTheBand) {
+  Handles h;
+  make(h, "irregular:seed=3", 0, INFINITY);
+  const Particle p = load_particle("irregular:seed=3", 2650);
+  const double floor = 0.5, band = 0.05 * p.length;
+  const repose_state start = state({2, 1, floor + 0.8 * p.length}, Quat(0.9, 0.3, -0.2, 0.1).normalized(),
+                                   Vec3::Zero(), Vec3::Zero());
+  repose_settler* s = nullptr;
+  ASSERT_EQ(repose_settler_new(h.particle, h.params, &start, floor, &s), REPOSE_OK);
+  int running = 1, checked = 0;
+  const double every = 0.002 * std::sqrt(p.length / 9.81);  // samples between the engine's long steps
+  for (int k = 1; running && k < 100000; ++k) {
+    ASSERT_EQ(repose_settler_advance_to(s, k * every, &running), REPOSE_OK);
+    int type = -1, count = 0;
+    repose_settler_contact(s, &type, &count);
+    std::size_t n = 0;
+    std::vector<double> points(3 * 64);
+    const int code = repose_settler_contact_points(s, points.data(), 64, &n);
+    ASSERT_EQ(code, REPOSE_OK) << repose_last_error();
+    if (!running) {  // at rest: the support, on the floor (1e-12 of metre-sized coordinates)
+      ASSERT_GE(n, 3u);
+      for (std::size_t i = 0; i < n; ++i) EXPECT_NEAR(points[3 * i + 2], floor, 1e-12);
+      break;
+    }
+    if (type == REPOSE_CONTACT_FREE_FALL) continue;
+    // The hull vertices within the band at the state's pose, counted here from the state (the engine's own
+    // contact set may lag inside a step, so it is not the reference).
+    repose_state now{};
+    repose_settler_state(s, &now, nullptr);
+    const Quat q(now.orientation[0], now.orientation[1], now.orientation[2], now.orientation[3]);
+    std::size_t expected = 0;
+    for (const Vec3& v : p.hull.vertices) expected += now.position[2] + (q * v).z() - floor <= band ? 1 : 0;
+    EXPECT_EQ(n, expected);
+    EXPECT_LE(std::abs(static_cast<int>(n) - count), 1);
+    for (std::size_t i = 0; i < n; ++i) {
+      EXPECT_GE(points[3 * i + 2] - floor, -1e-9 * p.length);
+      EXPECT_LE(points[3 * i + 2] - floor, band + 1e-12);
+    }
+    ++checked;
+  }
+  EXPECT_GT(checked, 10);
+  repose_settler_free(s);
+}
+
 TEST(CApi, PosesAreTheCatalogue) {
   Handles h;
   make(h, "irregular:seed=11", 0, INFINITY);
