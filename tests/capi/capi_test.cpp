@@ -122,9 +122,13 @@ TEST(CApi, TheCallersFrameIsCarriedThroughExactly) {
 // The state's velocity is the derivative of its position (central differences over 1e-6 s: error O(h²·a')
 // and rounding 1e-16/1e-6, both far below the 1e-6 m/s asked), and its kinetic energy, ½ m v² + ½ ωᵀ I_w ω
 // about the centre of mass, is the engine's (about the pivot while rotating: the parallel-axis theorem).
-TEST(CApi, TheStateVelocityIsTheDerivativeOfThePosition) {
+// Both contact phases: the paper's (infinite friction: a rotation about the contact) and the frictional one.
+class CApiVelocity : public ::testing::TestWithParam<double> {};
+INSTANTIATE_TEST_SUITE_P(Friction, CApiVelocity, ::testing::Values(INFINITY, 0.3));
+
+TEST_P(CApiVelocity, TheStateVelocityIsTheDerivativeOfThePosition) {
   Handles h;
-  make(h, "box:x=0.01,y=0.02,z=0.03", 0, INFINITY);  // the paper's phase: a rotation about the contact
+  make(h, "box:x=0.01,y=0.02,z=0.03", 0, GetParam());
   const Particle p = load_particle("box:x=0.01,y=0.02,z=0.03", 2650);
   const repose_state start =
       state({0, 0, 0.02}, Quat(0.9, 0.3, -0.2, 0.1).normalized(), Vec3::Zero(), Vec3::Zero());
