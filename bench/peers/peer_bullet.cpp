@@ -44,7 +44,8 @@
 //                                                    [--full-settle] [--toss E,MU [--match-threshold]]
 //                                                    [--length L|natural] [--bullet-step S] [--meshes FILE]
 //                                                    [--bullet-no-sleep] [--bullet-damping]
-//                                                    [--trace] [--no-histograms]   (--help: what they do)
+//                                                    [--export FILE] [--trace] [--no-histograms]
+//                                                    (--help: what they do)
 // Figures and discussion: docs/performance.md ("Against Bullet").
 #include <btBulletDynamicsCommon.h>
 
@@ -74,6 +75,7 @@
 
 #include "bullet_side.hpp"
 #include "bullet_steps.hpp"
+#include "peer_export.hpp"
 #include "peer_report.hpp"
 #include "peer_shapes.hpp"
 
@@ -168,8 +170,10 @@ BulletRun run_bullet(const repose::Particle& particle, const ReposeSide& rs,
   return run;
 }
 
+// One shape's row; with `exported`, the row's drops and answers are appended to it (--export).
 Row run_shape(const Shape& shape, std::uint64_t drops, std::uint64_t seed, bool full_settle, bool trace,
-              double length, const std::vector<double>& steps, BulletOptions bullet_options) {
+              double length, const std::vector<double>& steps, BulletOptions bullet_options,
+              nlohmann::json* exported) {
   const double scale = scale_to(shape, length);
   // repose's set-up: what `repose poses` pays once per particle.
   const auto t_setup = Clock::now();
@@ -216,6 +220,7 @@ Row run_shape(const Shape& shape, std::uint64_t drops, std::uint64_t seed, bool 
     hists.push_back(run.hist);
   }
   row.chosen = chosen_step(hists);
+  if (exported) exported->push_back(export_row(row, particle, catalog, seed, repose_pose));
   return row;
 }
 
@@ -224,7 +229,7 @@ int usage(const char* argv0, bool help = false) {
       help ? stdout : stderr,
       "usage: %s [--drops N] [--seed S] [--only NAME[,NAME...]] [--full-settle] [--toss E,MU]\n"
       "          [--match-threshold] [--length L|natural] [--bullet-step S] [--bullet-no-sleep]\n"
-      "          [--bullet-damping] [--trace] [--no-histograms]\n"
+      "          [--bullet-damping] [--export FILE] [--trace] [--no-histograms]\n"
       "  --drops N      drops per shape (default: per shape, a run of a few minutes)\n"
       "  --seed S       drop i starts at repose::drop_orientation(S, i) (default 1)\n"
       "  --only NAMES   comma-separated row names (cube, box123, tetrahedron, cylinder64, ellipsoid2000,\n"
@@ -243,6 +248,8 @@ int usage(const char* argv0, bool help = false) {
       "  --bullet-no-sleep  switch off Bullet's deactivation (default: on, Bullet's default)\n"
       "  --bullet-damping   give Bullet angular damping at repose's rate C/I (default: none, Bullet's "
       "default)\n"
+      "  --export FILE  write each shape's drops and both engines' answers to FILE (JSON), for a peer run\n"
+      "                 elsewhere (scripts/dem/yade_peer.py); drops from rest only, not with --toss\n"
       "  --trace        one line per drop on stderr: both poses and times, how Bullet's run ended, its final "
       "face\n"
       "  --no-histograms  only the table\n",
@@ -256,7 +263,7 @@ int main(int argc, char** argv) {
   std::uint64_t drops = 0, seed = 1;
   bool full_settle = false, histograms = true, trace = false;
   BulletOptions bullet_options;
-  std::string only, mesh_list;
+  std::string only, mesh_list, export_file;
   double length = 0.5;  // m; 0: the shapes' own sizes
   std::vector<double> steps = kCandidateSteps;
   for (int i = 1; i < argc; ++i) {
@@ -300,6 +307,9 @@ int main(int argc, char** argv) {
       bullet_options.sleep = false;
     } else if (a == "--bullet-damping") {
       bullet_options.damping = 1;  // replaced by repose's C per shape
+    } else if (a == "--export") {
+      export_file = value();
+      if (export_file.empty()) return usage(argv[0]);
     } else if (a == "--trace") {
       trace = true;
     } else if (a == "--no-histograms") {
@@ -307,6 +317,10 @@ int main(int argc, char** argv) {
     } else {
       return usage(argv[0], a == "--help" || a == "-h");
     }
+  }
+  if (!export_file.empty() && bullet_options.toss.active) {
+    std::fprintf(stderr, "error: --export writes drops from rest; it does not take --toss\n");
+    return 2;
   }
   std::vector<std::pair<Shape, std::uint64_t>> shapes = default_shapes();
   try {
@@ -333,16 +347,31 @@ int main(int argc, char** argv) {
                 .c_str()
           : "");
   std::vector<Row> rows;
+  nlohmann::json exported = nlohmann::json::array();
   try {
     for (const auto& [shape, default_drops] : shapes) {
       if (!only.empty() && only.find(',' + shape.name + ',') == std::string::npos) continue;
       std::fprintf(stderr, "%s (%s) ...\n", shape.name.c_str(), shape.spec.c_str());
       rows.push_back(run_shape(shape, drops > 0 ? drops : default_drops, seed, full_settle, trace, length,
-                               steps, bullet_options));
+                               steps, bullet_options, export_file.empty() ? nullptr : &exported));
     }
   } catch (const repose::Error& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;
+  }
+  if (!export_file.empty()) {
+    // Written whole to a temporary name and renamed: no partial file if the write fails.
+    const std::string temporary = export_file + ".partial";
+    std::ofstream out(temporary);
+    out << nlohmann::json{{"seed", seed}, {"gravity", kGravity}, {"density", kDensity}, {"shapes", exported}};
+    out.close();
+    std::error_code error;
+    if (out) std::filesystem::rename(temporary, export_file, error);
+    if (!out || error) {
+      std::filesystem::remove(temporary, error);
+      std::fprintf(stderr, "error: %s: cannot write the export\n", export_file.c_str());
+      return 1;
+    }
   }
   print_table(rows);
   print_steps(rows);

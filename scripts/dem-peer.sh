@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Yade as a peer in the peer benchmark (issue 36 item 4; docs/performance.md, "Yade as a peer"): the benchmark's
+# own drops (the same shapes, sizes and start orientations as repose's and Bullet's) settled by Yade 2023.02
+# (Debian's), each at Yade's candidate steps, with its step chosen as Bullet's is. Writes results/peer-yade/:
+# drops.json (repose_peer_bullet --export), bullet.txt (that run's own tables), yade.json, table.txt (printed).
+#   scripts/dem-peer.sh [DROPS] [SHAPES]   default 100 drops of cube,box123,tetrahedron,grain100,cylinder64
+#                                          (about 40 min on one 2 GHz core); SHAPES: comma-separated names
+# Installs Yade from Debian itself (so the quick start does not grow); needs root or sudo.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+drops="${1:-100}"
+shapes="${2:-cube,box123,tetrahedron,grain100,cylinder64}"
+scripts/install-deps.sh
+if ! command -v yade >/dev/null; then
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  echo "Installing Yade (Debian's yade package)"
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -qq
+  "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends yade >/dev/null
+fi
+cmake --preset release >/dev/null
+cmake --build --preset release -j"$(nproc)" --target repose_peer_bullet
+out=results/peer-yade
+mkdir -p "$out"
+build/release/bench/peers/repose_peer_bullet --drops "$drops" --only "$shapes" --export "$out/drops.json" \
+  >"$out/bullet.txt"
+# One thread, as repose and Bullet run; Yade prints a collider warning per scene (no spheres: verletDist 0).
+yade -n -j1 -x scripts/dem/yade_peer.py "$out/drops.json" "$out/yade.json" >"$out/yade.log" 2>&1
+/usr/bin/python3 scripts/dem/peer_table.py "$out/drops.json" "$out/yade.json" | tee "$out/table.txt"
