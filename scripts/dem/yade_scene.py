@@ -5,7 +5,8 @@ One grain per scene: Yade 2023.02's polyhedra contact law keeps the shear force 
 (Law2_PolyhedraGeom_PolyhedraPhys_Volumetric::shearForce, a member of the functor), not in each contact, so
 in a scene with more than one contact the contacts exchange their friction forces: two cubes settling side by
 side, never touching, creep at ~5 mm/s and turn at ~0.2 rad/s for ever, where each alone comes to rest to
-1e-17 m/s. Grains that never meet (ours fall in lanes) are therefore run one scene each, which is exact.
+1e-14 m/s (yade_shared_shear.py). Grains that never meet (ours fall in lanes) are therefore run one scene
+each, which is exact.
 """
 import math
 
