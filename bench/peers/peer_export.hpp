@@ -1,5 +1,5 @@
-// --export FILE (peer_bullet.cpp): each shape's drops and both engines' answers as JSON, for a third peer that
-// is not a C++ library: the DEM code Yade runs the same drops in scripts/dem/yade_peer.py and
+// --export FILE (peer_bullet.cpp): each shape's drops and both engines' answers as JSON, for a third peer
+// that is not a C++ library: the DEM code Yade runs the same drops in scripts/dem/yade_peer.py and
 // scripts/dem/peer_table.py prints its column beside repose's and Bullet's (docs/performance.md, "Yade as a
 // peer"). Everything a peer needs to run and classify a drop is here, in SI units: the hull (body frame: the
 // centre of mass at the origin), its faces' outward normals with their rest pose and stability margin (a
@@ -36,7 +36,8 @@ inline nlohmann::json export_row(const Row& row, const repose::Particle& particl
                             {"pose", catalog.face_pose[f]},
                             {"stability_margin", particle.face_stability_margin[f]}});
   out["pose_down_normals"] = nlohmann::json::array();
-  for (const repose::RestPose& p : catalog.poses) out["pose_down_normals"].push_back(to_json(p.down_normal_body));
+  for (const repose::RestPose& p : catalog.poses)
+    out["pose_down_normals"].push_back(to_json(p.down_normal_body));
   out["drops"] = nlohmann::json::array();
   for (std::uint64_t i = 0; i < row.drops; ++i) {
     const Quat q = repose::drop_orientation(seed, i);

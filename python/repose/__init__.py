@@ -44,7 +44,7 @@ def settle(particle, orientation="identity", *, sample_dt=None, **params):
 
 class Settler:
     """The step-wise engine (a DEM code's view): step() advances one step, advance_to(t) to time t;
-    sample() is the current state (t, quaternion, omega, com, energies, contact); result() the summary."""
+    sample() is the current state (t, quaternion, omega, com, velocity, energies, contact); result() the summary."""
 
     def __init__(self, particle, orientation="identity", **params):
         self._engine = _Settler(particle, orientation, dict(params))

@@ -43,7 +43,8 @@ def _wrap(value):
 
 
 class Series(Record):
-    """A run's time series: t, quaternion (w, x, y, z), omega and com (world frame), kinetic_energy,
+    """A run's time series: t, quaternion (w, x, y, z), omega, com and velocity (the centre of mass's; world
+    frame), kinetic_energy,
     potential_energy (NumPy arrays, one row per sample), contact (the contact type's name per sample) and
     contact_count."""
 

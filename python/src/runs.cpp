@@ -82,11 +82,11 @@ py::array_t<double> rows(const std::vector<std::array<double, 4>>& r, py::ssize_
   return out;
 }
 
-// The time series as NumPy arrays: t, quaternion (w, x, y, z), omega and com (world), kinetic and potential
-// energy, contact (the type's name) and contact_count.
+// The time series as NumPy arrays: t, quaternion (w, x, y, z), omega, com and velocity (the centre of mass's;
+// world), kinetic and potential energy, contact (the type's name) and contact_count.
 py::dict series(const std::vector<Sample>& samples) {
   std::vector<double> t, kinetic, potential;
-  std::vector<std::array<double, 4>> quaternion, omega, com;
+  std::vector<std::array<double, 4>> quaternion, omega, com, velocity;
   std::vector<std::string> contact;
   std::vector<int> count;
   for (const Sample& s : samples) {
@@ -94,6 +94,7 @@ py::dict series(const std::vector<Sample>& samples) {
     quaternion.push_back({s.orientation.w(), s.orientation.x(), s.orientation.y(), s.orientation.z()});
     omega.push_back({s.omega.x(), s.omega.y(), s.omega.z(), 0});
     com.push_back({s.com.x(), s.com.y(), s.com.z(), 0});
+    velocity.push_back({s.velocity.x(), s.velocity.y(), s.velocity.z(), 0});
     kinetic.push_back(s.kinetic_energy);
     potential.push_back(s.potential_energy);
     contact.emplace_back(to_string(s.contact));
@@ -104,6 +105,7 @@ py::dict series(const std::vector<Sample>& samples) {
   d["quaternion"] = rows(quaternion, 4);
   d["omega"] = rows(omega, 3);
   d["com"] = rows(com, 3);
+  d["velocity"] = rows(velocity, 3);
   d["kinetic_energy"] = py::array_t<double>(static_cast<py::ssize_t>(kinetic.size()), kinetic.data());
   d["potential_energy"] = py::array_t<double>(static_cast<py::ssize_t>(potential.size()), potential.data());
   d["contact"] = contact;
