@@ -82,18 +82,18 @@ def main():
     print("\nThe three engines, the same drops (one thread each; Yade at its chosen step, each drop in a scene of "
           "its own)\n")
     print("| shape | hull vertices | L (m) | drops | repose ms/settle | Bullet step | Bullet ms/settle | Bullet max "
-          "depth (L) | Yade step | Yade ms/settle | Yade / repose | Yade set-up ms/drop | Yade max depth (L) | "
+          "depth (L) | Yade step | Yade ms/settle | Yade / repose | Yade / Bullet | Yade set-up ms/drop | Yade max depth (L) | "
           "Yade no rest / off a stable face | same pose as repose: Bullet, Yade | Yade mass / repose's |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for shape, run, hist, poses, drops in rows:
         r, b = shape["repose"], shape["bullet"]
         yade_ms = 1e3 * run["wall_seconds"] / drops
         same = sum(d["pose"] == s["repose_pose"] for d, s in zip(run["drops"], shape["drops"]))
-        print("| %s | %d | %.3f | %d | %.3f | 1/%.0f s | %.3f | %.1e | %g s | %.1f | %.0f | %.2f | %.1e | %d / %d | "
+        print("| %s | %d | %.3f | %d | %.3f | 1/%.0f s | %.3f | %.1e | %g s | %.1f | %.0f | %.0f | %.2f | %.1e | %d / %d | "
               "%d %%, %d %% | %.6f |" % (
                   shape["name"], len(shape["hull_vertices"]), shape["length"], drops, r["ms_per_settle"],
                   1 / b["step"], b["ms_per_settle"], b["max_depth_L"], run["step"], yade_ms,
-                  yade_ms / r["ms_per_settle"], 1e3 * run["setup_seconds"] / drops,
+                  yade_ms / r["ms_per_settle"], yade_ms / b["ms_per_settle"], 1e3 * run["setup_seconds"] / drops,
                   max(d["depth"] for d in run["drops"]) / shape["length"], sum(not d["rested"] for d in run["drops"]),
                   sum(d["off_face"] for d in run["drops"]), 100 * b["same_pose_as_repose"] // drops,
                   100 * same // drops, run["yade_mass"] / shape["mass"]))
