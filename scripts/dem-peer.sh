@@ -4,8 +4,8 @@
 # (Debian's), each at Yade's candidate steps, with its step chosen as Bullet's is. Writes results/peer-yade/:
 # drops.json (repose_peer_bullet --export), bullet.txt (that run's own tables), yade.json, table.txt (printed).
 #   scripts/dem-peer.sh [DROPS] [SHAPES]   default 100 drops of cube,box123,tetrahedron,grain100,cylinder64
-#                                          (about 2 h on one 2 GHz core, most of it Yade's finest steps on the
-#                                          128- and 105-vertex hulls); SHAPES: comma-separated names
+#                                          (about 3.5 h on one 2 GHz core, most of it Yade's finest steps on
+#                                          the 128- and 105-vertex hulls); SHAPES: comma-separated names
 #   YADE_STEPS=2e-3 scripts/dem-peer.sh 10 ellipsoid2000,grain1000   Yade at one step only (its cost per step
 #                                          grows with the hull: ~3 ms at 1,000 vertices)
 # Installs Yade from Debian itself (so the quick start does not grow); needs root or sudo.
