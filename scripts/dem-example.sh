@@ -12,14 +12,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 n="${1:-100}"
 scripts/install-deps.sh
-if ! command -v yade >/dev/null; then
-  sudo_cmd=()
-  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
-  echo "Installing Yade (Debian's yade package)"
-  export DEBIAN_FRONTEND=noninteractive
-  "${sudo_cmd[@]}" apt-get update -qq
-  "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends yade >/dev/null
-fi
+scripts/dem/install-yade.sh
 cmake --preset release >/dev/null
 cmake --build --preset release -j"$(nproc)" --target repose_c
 lib="$PWD/build/release/src/librepose_c.so"

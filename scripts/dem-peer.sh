@@ -14,14 +14,7 @@ cd "$(dirname "$0")/.."
 drops="${1:-100}"
 shapes="${2:-cube,box123,tetrahedron,grain100,cylinder64}"
 scripts/install-deps.sh
-if ! command -v yade >/dev/null; then
-  sudo_cmd=()
-  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
-  echo "Installing Yade (Debian's yade package)"
-  export DEBIAN_FRONTEND=noninteractive
-  "${sudo_cmd[@]}" apt-get update -qq
-  "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends yade >/dev/null
-fi
+scripts/dem/install-yade.sh
 cmake --preset release >/dev/null
 cmake --build --preset release -j"$(nproc)" --target repose_peer_bullet
 out=results/peer-yade

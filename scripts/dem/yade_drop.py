@@ -105,11 +105,7 @@ if MODE == "alone":
         grain = drop(g["vertices"], g["start"]["orientation"], g["length"])
         O.dt = DT
         rest = RestTest(g["length"], G, int(round(WINDOW / (per_sample * DT))))
-        depth, rested = 0.0, False
-        while O.time < T_MAX - 1e-12 and not rested:
-            Grain.steps(per_sample)
-            depth = max(depth, -lowest(grain.body))
-            rested = rest.sample(grain.body)
+        rested, depth = grain.run_to_rest(rest, per_sample, T_MAX)
         g["orientation"] = grain.orientation()
         g["position"] = list(grain.body.state.pos)
         g["at_rest"] = rested

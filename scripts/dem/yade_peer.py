@@ -35,7 +35,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))
-from yade_scene import Grain, RestTest, lowest  # noqa: E402
+from yade_scene import Grain, RestTest  # noqa: E402
 
 # Yade's candidate steps (s), coarsest first; the finest is the reference (YADE_STEPS overrides).
 STEPS = [float(s) for s in os.environ.get("YADE_STEPS", "2e-3,1e-3,5e-4,2.5e-4,1e-4").split(",")]
@@ -58,11 +58,7 @@ def drop_once(shape, drop, gravity, step):
     setup = time.perf_counter() - started
     per_sample = max(1, int(round(SAMPLE / step)))
     rest = RestTest(shape["length"], gravity, int(round(WINDOW / (per_sample * step))))
-    depth, rested = 0.0, False
-    while O.time < MAX_TIME - 1e-12 and not rested:
-        Grain.steps(per_sample)
-        depth = max(depth, -lowest(grain.body))
-        rested = rest.sample(grain.body)
+    rested, depth = grain.run_to_rest(rest, per_sample, MAX_TIME)
     wall = time.perf_counter() - started
     face, angle = nearest_face(shape["faces"], grain.down_body())
     b = grain.body

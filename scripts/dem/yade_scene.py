@@ -82,6 +82,16 @@ class Grain:
         for _ in range(n):
             O.step()  # synchronous; O.run(n, True) costs ~40 ms a call in waiting alone
 
+    def run_to_rest(self, rest, per_sample, t_max):
+        """Steps until `rest` (a RestTest, fed every `per_sample` steps) says the grain rests, or to `t_max`.
+        Returns (rested, the deepest overlap with the floor at the samples)."""
+        depth, rested = 0.0, False
+        while O.time < t_max - 1e-12 and not rested:
+            Grain.steps(per_sample)
+            depth = max(depth, -lowest(self.body))
+            rested = rest.sample(self.body)
+        return rested, depth
+
 
 class RestTest:
     """The peer benchmark's rest test for Bullet (bench/peers/bullet_side.hpp) on the motions that change the
