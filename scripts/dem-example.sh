@@ -11,7 +11,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 n="${1:-100}"
-scripts/install-deps.sh
+scripts/install-deps.sh core python
 scripts/dem/install-yade.sh
 cmake --preset release >/dev/null
 cmake --build --preset release -j"$(nproc)" --target repose_c

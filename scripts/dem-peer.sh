@@ -13,7 +13,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 drops="${1:-100}"
 shapes="${2:-cube,box123,tetrahedron,grain100,cylinder64}"
-scripts/install-deps.sh
+scripts/install-deps.sh core python bench
 scripts/dem/install-yade.sh
 cmake --preset release >/dev/null
 cmake --build --preset release -j"$(nproc)" --target repose_peer_bullet

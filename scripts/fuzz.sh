@@ -15,7 +15,7 @@ targets=("$@")
 [ ${#targets[@]} -gt 0 ] ||
   targets=(mesh_stl mesh_obj mesh_ply mesh_off mesh_xyz mesh_options shape_spec orientation_spec scenario poses_result)
 
-scripts/install-deps.sh
+scripts/install-deps.sh core fuzz
 cmake --preset fuzz >/dev/null
 cmake --build --preset fuzz -j"$(nproc)"
 

@@ -1,20 +1,52 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages repose needs to build, test and plot. Idempotent: does nothing when all
-# are present. Needs root (or sudo) and Debian's package archive.
+# Installs the Debian 12 packages of the named groups that are missing (all groups when none is named).
+# Idempotent: does nothing when they are all present. Needs root (or sudo) and Debian's package archive.
+#   scripts/install-deps.sh core python plots      what scripts/quickstart.sh installs
+#   scripts/install-deps.sh --list                 the groups and their packages
+# What each group is for, and why these packages: docs/building.md#dependencies.
 set -euo pipefail
-packages=(
-  g++ cmake make pkg-config git
-  gfortran  # the Fortran module over the C API (bindings/fortran/) and its example
-  libeigen3-dev libboost-dev libcli11-dev nlohmann-json3-dev libqhull-dev libtbb-dev librandom123-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
-  libcgal-dev  # --repair: CGAL Polygon Mesh Processing (header-only; GPL-3+)
-  libbullet-dev  # bench/peers: the peer benchmark against Bullet 3.24 (double precision); builds without it too
-  libopenmpi-dev openmpi-bin  # the MPI runner (mpirun -np K repose poses); builds without it too
-  clang libclang-rt-14-dev  # scripts/fuzz.sh: the clang driver and libFuzzer + sanitizer runtimes
-  python3 python3-matplotlib python3-scipy  # scipy: independent ODE reference in the physics tests
-  python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest  # the Python package (python/)
-  chromium chromium-driver python3-selenium fonts-liberation  # the HTML reports opened in headless Chromium (tests/output)
+
+declare -A group=(
+  # Build and run the library and the `repose` tool (CGAL: --repair, header-only with GMP and MPFR).
+  [core]="g++ cmake ninja-build pkg-config libeigen3-dev libboost-dev libcli11-dev nlohmann-json3-dev
+          libqhull-dev libtbb-dev librandom123-dev libcgal-dev"
+  # The Python package `repose` (pybind11 extension, NumPy arrays) in Debian's python3.
+  [python]="python3 python3-dev pybind11-dev python3-numpy"
+  # The figures of `repose paper` and the plotting scripts.
+  [plots]="python3-matplotlib"
+  # The test suites: GoogleTest, pytest, SciPy as the independent ODE reference, git for the mutation script.
+  [tests]="libgtest-dev libgmock-dev python3-pytest python3-scipy git"
+  # The MPI runner (mpirun -np K repose poses) and its tests.
+  [mpi]="libopenmpi-dev openmpi-bin"
+  # The Fortran module over the C API and its example.
+  [fortran]="gfortran"
+  # Google Benchmark, and Bullet as the peer of the peer benchmark (bench/peers/).
+  [bench]="libbenchmark-dev libbullet-dev"
+  # The HTML reports opened in headless Chromium (tests/output/report_browser_test.py).
+  [browser]="chromium chromium-driver python3-selenium fonts-liberation"
+  # The libFuzzer harnesses (scripts/fuzz.sh): clang and its sanitizer and libFuzzer runtimes.
+  [fuzz]="clang libclang-rt-14-dev"
 )
+order=(core python plots tests mpi fortran bench browser fuzz)
+
+if [ "${1:-}" = "--list" ]; then
+  for g in "${order[@]}"; do
+    echo "$g:" ${group[$g]}
+  done
+  exit 0
+fi
+names=("$@")
+[ ${#names[@]} -gt 0 ] || names=("${order[@]}")
+packages=()
+for g in "${names[@]}"; do
+  if [ -z "${group[$g]+set}" ]; then
+    echo "install-deps.sh: unknown group '$g' (groups: ${order[*]})" >&2
+    exit 2
+  fi
+  read -r -a list <<<"${group[$g]}"
+  packages+=("${list[@]}")
+done
+
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -22,7 +54,7 @@ done
 if [ ${#missing[@]} -eq 0 ]; then
   exit 0
 fi
-echo "Installing: ${missing[*]}"
+echo "Installing (${names[*]}): ${missing[*]}"
 sudo_cmd=()
 [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
 export DEBIAN_FRONTEND=noninteractive

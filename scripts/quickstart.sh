@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Quick start: install the dependencies, build what the main job needs (release: the `repose` tool and the
+# Quick start: install the Debian packages the main job needs (groups core, python and plots of
+# scripts/install-deps.sh, not the test tools, which scripts/test.sh installs), build what the main job needs (release: the `repose` tool and the
 # Python module, not the tests or benchmarks, which scripts/test.sh builds), install both, and run the main
 # job: `repose paper`, the paper's four cases (six runs) with figures, ParaView series and a comparison table,
 # in results/paper/.
@@ -7,7 +8,7 @@
 #   the Python package `repose` -> where Debian's /usr/bin/python3 finds it (--component python)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/install-deps.sh
+scripts/install-deps.sh core python plots
 cmake --preset release >/dev/null
 cmake --build --preset release -j"$(nproc)" --target quickstart  # repose_cli and _repose (CMakeLists.txt)
 cmake --install build/release --component cli >/dev/null

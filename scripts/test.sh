@@ -4,7 +4,8 @@
 #   scripts/test.sh --sanitize also the AddressSanitizer + UBSan build (preset asan)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/install-deps.sh
+# Everything the suites build and run but the fuzzers (scripts/fuzz.sh installs clang for those).
+scripts/install-deps.sh core python plots tests mpi fortran bench browser
 presets=(ci)
 [ "${1:-}" = "--sanitize" ] && presets+=(asan)
 for preset in "${presets[@]}"; do

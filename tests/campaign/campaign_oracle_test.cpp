@@ -18,9 +18,9 @@ namespace {
 using namespace repose;
 
 #ifdef NDEBUG
-constexpr std::uint64_t kDrops = 600;
+constexpr std::uint64_t kOracleDrops = 600;
 #else
-constexpr std::uint64_t kDrops = 30;  // the sanitizer build is ~100x slower
+constexpr std::uint64_t kOracleDrops = 30;  // the sanitizer build is ~100x slower
 #endif
 
 // The face of a box a body-frame down direction points at: 0..5 for −x, +x, −y, +y, −z, +z.
@@ -35,9 +35,9 @@ TEST(CampaignOracle, PoseCountsEqualDropByDropSettles) {
   const std::string spec = "box:x=1,y=2,z=3";
   CampaignOptions options;
   options.settings.seed = 11;
-  options.drops = {0, kDrops};
+  options.drops = {0, kOracleDrops};
   options.threads = 2;
-  options.chunk = kDrops / 7;  // items of uneven size
+  options.chunk = kOracleDrops / 7;  // items of uneven size
   LocalRunner runner;
   const std::vector<PosesStudy> studies = run_campaign(
       [&] {
@@ -53,7 +53,7 @@ TEST(CampaignOracle, PoseCountsEqualDropByDropSettles) {
   SettleParams params;
   params.damping = 0.05 * box.mass.mass * std::sqrt(params.gravity * std::pow(box.length, 3));
   std::map<int, std::uint64_t> expected;
-  for (std::uint64_t i = 0; i < kDrops; ++i) {
+  for (std::uint64_t i = 0; i < kOracleDrops; ++i) {
     const SettleResult r = settle(box, params, drop_orientation(options.settings.seed, i));
     ASSERT_EQ(r.status, Status::rest) << "drop " << i;
     ++expected[box_face(r.down_normal_body)];
@@ -64,7 +64,7 @@ TEST(CampaignOracle, PoseCountsEqualDropByDropSettles) {
     counted[box_face(study.catalog.poses[p].down_normal_body)] += study.tally.poses[p].count;
     total += study.tally.poses[p].count;
   }
-  EXPECT_EQ(total, kDrops);
+  EXPECT_EQ(total, kOracleDrops);
   EXPECT_EQ(counted, expected);
 }
 

@@ -26,13 +26,8 @@ using repose::test::run_cli;
 using repose::test::without_timing;
 using ::testing::HasSubstr;
 
-// The sanitizer build runs the engine ~200x slower: the same checks on fewer drops and smaller items.
-#ifdef NDEBUG
-constexpr int kScale = 1;
-#else
-constexpr int kScale = 20;
-#endif
-std::string drops(int n) { return std::to_string(n / kScale); }
+using repose::test::kCampaignScale;  // fewer drops in the sanitizer build
+std::string drops(int n) { return std::to_string(n / kCampaignScale); }
 
 class CampaignCli : public repose::test::TempDirTest {
  protected:
@@ -81,7 +76,7 @@ TEST_F(CampaignCli, ManyParticlesGiveOneResultEachAndASummary) {
     EXPECT_EQ(summary["particles"][name == "cube_ascii"        ? 0
                                    : name == "box_x=1_y=2_z=3" ? 1
                                                                : 2]["n"],
-              300 / kScale);
+              300 / kCampaignScale);
   }
 }
 
@@ -115,7 +110,7 @@ TEST_F(CampaignCli, DirectoryOfMeshesAndBadInput) {
 
 #ifdef REPOSE_MPIEXEC
 
-std::string mpirun(int ranks) { return std::string(REPOSE_MPIEXEC) + " -np " + std::to_string(ranks) + " "; }
+using repose::test::mpirun;
 
 // The acceptance test of the MPI build: 1, 2 and 3 ranks, 1 or 2 threads each, give the same JSON as one
 // process (timing excepted), for one particle and for several.

@@ -39,12 +39,7 @@ using repose::test::read_file;
 using repose::test::run_cli;
 using repose::test::without_timing;
 
-// The sanitizer build runs the engine ~200x slower: the same checks on fewer drops and smaller items.
-#ifdef NDEBUG
-constexpr int kScale = 1;
-#else
-constexpr int kScale = 20;
-#endif
+using repose::test::kCampaignScale;  // fewer drops in the sanitizer build
 
 // The job: the tetrahedron (particle 0) and the unit cube (particle 1), 20.5 items of `kChunk` drops each.
 // Items run costliest first (drops x hull vertices: the cube's 8 before the tetrahedron's 4; ties in input
@@ -52,7 +47,7 @@ constexpr int kScale = 20;
 // tetrahedron's first checkpoint is due, the cube's holds 20 of its 20.5 items (under MPI, with one item
 // possibly still running on the other rank, at least 19).
 const int kItems = 20;
-const int kChunk = 100 / kScale;
+const int kChunk = 100 / kCampaignScale;
 const int kDrops = kItems * kChunk + kChunk / 2;
 const std::string kParticles = "tetrahedron:edge=1 box:x=1,y=1,z=1";
 const std::string kBlocked = "tetrahedron_edge=1";
@@ -209,7 +204,7 @@ TEST_F(CampaignResumeCli, KilledRunResumesToTheUninterruptedResult) {
 
 #ifdef REPOSE_MPIEXEC
 
-std::string mpirun(int ranks) { return std::string(REPOSE_MPIEXEC) + " -np " + std::to_string(ranks) + " "; }
+using repose::test::mpirun;
 
 TEST_F(CampaignResumeCli, MpiJobKilledMidwayResumesOnAnotherRankCount) {
   const std::string args = job_args(4);

@@ -105,4 +105,19 @@ class TempDirTest : public ::testing::Test {
   std::filesystem::path dir_;
 };
 
+// The sanitizer build runs the engine ~200x slower: the campaign tests make the same checks on fewer drops
+// and smaller items.
+#ifdef NDEBUG
+inline constexpr int kCampaignScale = 1;
+#else
+inline constexpr int kCampaignScale = 20;
+#endif
+
+#ifdef REPOSE_MPIEXEC
+/// The launcher prefix of a command run on `ranks` MPI ranks.
+inline std::string mpirun(int ranks) {
+  return std::string(REPOSE_MPIEXEC) + " -np " + std::to_string(ranks) + " ";
+}
+#endif
+
 }  // namespace repose::test

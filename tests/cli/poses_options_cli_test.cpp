@@ -24,16 +24,16 @@ class PosesOptionsCli : public repose::test::TempDirTest {};
 
 // The sanitizer build runs the engine ~200x slower: fewer drops there (the claims hold for any drop count).
 #ifdef NDEBUG
-constexpr int kDrops = 200;
+constexpr int kOptionDrops = 200;
 #else
-constexpr int kDrops = 20;
+constexpr int kOptionDrops = 20;
 #endif
 
 TEST_F(PosesOptionsCli, FullSettleGivesTheSameCountsDropForDrop) {
   // docs/rest-poses.md: stopping a drop once its energy cannot leave its pose never changes the pose, and a
   // pose's representative orientation is always that of a complete run. So everything but the cost is equal.
   const std::string args =
-      "poses irregular:seed=3 -n " + std::to_string(kDrops) + " --seed 2 --threads 2 --json";
+      "poses irregular:seed=3 -n " + std::to_string(kOptionDrops) + " --seed 2 --threads 2 --json";
   json early = parse_json(run_cli(args));
   json full = parse_json(run_cli(args + " --full-settle"));
   EXPECT_EQ(early["settings"]["decide_early"], true);

@@ -25,6 +25,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using repose::test::CliResult;
 using repose::test::expect_bad_input;
+using repose::test::numbers;
 using repose::test::parse_json;
 using repose::test::run_cli;
 using ::testing::HasSubstr;
@@ -54,13 +55,6 @@ std::string exact(double x) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.17g", x);
   return buf;
-}
-
-std::vector<double> numbers(const json& v) {
-  std::vector<double> out;
-  if (v.is_array())
-    for (const json& x : v) out.push_back(x.get<double>());
-  return out;
 }
 
 double norm(const std::vector<double>& v) {

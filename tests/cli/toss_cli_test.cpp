@@ -22,9 +22,9 @@ using ::testing::HasSubstr;
 class TossCli : public repose::test::TempDirTest {};
 
 #ifdef NDEBUG
-constexpr int kDrops = 200;
+constexpr int kTossDrops = 200;
 #else
-constexpr int kDrops = 20;  // the sanitizer build is ~200x slower; the claims hold for any count
+constexpr int kTossDrops = 20;  // the sanitizer build is ~200x slower; the claims hold for any count
 #endif
 
 TEST_F(TossCli, SettleJsonListsTheImpactsAndTheFlights) {
@@ -69,7 +69,7 @@ TEST_F(TossCli, TossedPosesAreTheSameForAnyThreadCountAndSplit) {
   const std::string base =
       "poses box:x=1,y=2,z=3 --seed 5 --drop-height 0.5 --restitution 0.6 --friction 0.4 "
       "--velocity-max 1.5 --spin-max 4 ";
-  const std::string n = std::to_string(kDrops), half = std::to_string(kDrops / 2);
+  const std::string n = std::to_string(kTossDrops), half = std::to_string(kTossDrops / 2);
   const json one = without_timing(parse_json(run_cli(base + "-n " + n + " --threads 1 --json")));
   const json two = without_timing(parse_json(run_cli(base + "-n " + n + " --threads 2 --json")));
   EXPECT_EQ(one.dump(), two.dump());
@@ -98,7 +98,7 @@ TEST_F(TossCli, TossedPosesAreTheSameForAnyThreadCountAndSplit) {
 TEST_F(TossCli, EarlyDecisionIsExactWithRebounds) {
   // No impact creates energy and nothing goes below the wall, so a drop whose energy is below its pose's
   // barrier stays in it through any rebound: --full-settle gives the same pose for every drop.
-  const std::string args = "poses tetrahedron:edge=1 -n " + std::to_string(kDrops) +
+  const std::string args = "poses tetrahedron:edge=1 -n " + std::to_string(kTossDrops) +
                            " --seed 3 --drop-height 0.3 --restitution 0.7 --friction 0.5 --velocity-max 1 "
                            "--spin-max 6 --json";
   json early = parse_json(run_cli(args));

@@ -14,6 +14,7 @@
 #include "repose/error.hpp"
 #include "repose/geometry/mesh.hpp"
 #include "repose/model/particle.hpp"
+#include "test_data.hpp"
 
 namespace repose {
 namespace {
@@ -22,8 +23,6 @@ namespace fs = std::filesystem;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 using ::testing::Not;
-
-std::string data_file(const std::string& name) { return std::string(REPOSE_TEST_DATA) + "/" + name; }
 
 // The message of the repose::Error that reading (and, with `validate`, validating) throws.
 std::string load_error(const std::string& path, bool validate = false) {
@@ -37,7 +36,7 @@ std::string load_error(const std::string& path, bool validate = false) {
 }
 
 std::string data_error(const std::string& name, bool validate = false) {
-  return load_error(data_file(name), validate);
+  return load_error(test::data_file(name), validate);
 }
 
 // A scratch directory per test for files too small or too odd to keep under tests/data.
@@ -67,7 +66,7 @@ class MeshIoTest : public ::testing::Test {
 class ReadCube : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(ReadCube, HasUnitVolume) {
-  const std::string path = data_file(GetParam());
+  const std::string path = test::data_file(GetParam());
   TriangleMesh m = read_mesh(path);
   EXPECT_EQ(m.vertices.size(), 8u);
   EXPECT_EQ(m.triangles.size(), 12u);
@@ -110,7 +109,7 @@ TEST_F(MeshIoTest, StlCornersAreMergedAndNearDuplicatesWelded) {
 
 TEST_F(MeshIoTest, ExtensionIsCaseInsensitive) {
   const fs::path path = dir_ / "CUBE.STL";
-  fs::copy_file(data_file("cube_binary.stl"), path);
+  fs::copy_file(test::data_file("cube_binary.stl"), path);
   EXPECT_EQ(read_mesh(path.string()).triangles.size(), 12u);
 }
 
@@ -119,14 +118,14 @@ TEST_F(MeshIoTest, ExtensionIsCaseInsensitive) {
 
 TEST(MeshIo, NonexistentFile) {
   EXPECT_EQ(data_error("does_not_exist.stl"),
-            data_file("does_not_exist.stl") + ": cannot open: No such file or directory");
+            test::data_file("does_not_exist.stl") + ": cannot open: No such file or directory");
 }
 
 TEST(MeshIo, Directory) {
   EXPECT_EQ(load_error(REPOSE_TEST_DATA), std::string(REPOSE_TEST_DATA) + ": cannot open: Is a directory");
 }
 
-TEST(MeshIo, EmptyFile) { EXPECT_EQ(data_error("empty.stl"), data_file("empty.stl") + ": empty file"); }
+TEST(MeshIo, EmptyFile) { EXPECT_EQ(data_error("empty.stl"), test::data_file("empty.stl") + ": empty file"); }
 
 TEST_F(MeshIoTest, UnknownExtension) {
   const std::string path = write("cube.3mf", "0 0 0\n1 0 0\n0 1 0\n");
@@ -149,14 +148,14 @@ TEST_F(MeshIoTest, ParseErrorIsOneLine) {
 
 TEST(MeshIo, TruncatedBinaryStl) {
   EXPECT_EQ(data_error("truncated.stl"),
-            data_file("truncated.stl") +
+            test::data_file("truncated.stl") +
                 ": truncated binary STL: header claims 12 triangles (needs 684 bytes), file has 664 bytes");
 }
 
 TEST(MeshIo, BinaryStlClaimingTwoBillionFacets) {
   // 84 + 50·2^31 wraps to 84 in 32-bit arithmetic, which would make this 84-byte file look consistent.
   EXPECT_EQ(data_error("huge_count.stl"),
-            data_file("huge_count.stl") +
+            test::data_file("huge_count.stl") +
                 ": truncated binary STL: header claims 2147483648 triangles (needs 107374182484 bytes), file "
                 "has 84 bytes");
 }
@@ -197,12 +196,15 @@ TEST(MeshIo, TruncatedPlyAndOff) {
 // silently: rejected, naming the line.
 
 TEST(MeshIo, FaceIndexOutOfRange) {
-  EXPECT_EQ(data_error("bad_index.off"),
-            data_file("bad_index.off") + ": line 17: in face 6, vertex index 8 does not exist (8 vertices)");
-  EXPECT_EQ(data_error("bad_index.obj"),
-            data_file("bad_index.obj") + ": line 15: in face 6, vertex index 9 does not exist (8 vertices)");
-  EXPECT_EQ(data_error("bad_index.ply"),
-            data_file("bad_index.ply") + ": line 24: in face 6, vertex index 8 does not exist (8 vertices)");
+  EXPECT_EQ(
+      data_error("bad_index.off"),
+      test::data_file("bad_index.off") + ": line 17: in face 6, vertex index 8 does not exist (8 vertices)");
+  EXPECT_EQ(
+      data_error("bad_index.obj"),
+      test::data_file("bad_index.obj") + ": line 15: in face 6, vertex index 9 does not exist (8 vertices)");
+  EXPECT_EQ(
+      data_error("bad_index.ply"),
+      test::data_file("bad_index.ply") + ": line 24: in face 6, vertex index 8 does not exist (8 vertices)");
 }
 
 TEST_F(MeshIoTest, ObjIndexForms) {
@@ -237,10 +239,11 @@ TEST_F(MeshIoTest, ObjVertexLinesOtherReadersWouldSkip) {
 
 // Lines and points are no surface: what remains is a point cloud, which validate_mesh rejects.
 TEST(MeshIo, ObjWithoutTriangles) {
-  const TriangleMesh m = read_mesh(data_file("lines_only.obj"));
+  const TriangleMesh m = read_mesh(test::data_file("lines_only.obj"));
   EXPECT_EQ(m.vertices.size(), 3u);
   EXPECT_TRUE(m.triangles.empty());
-  EXPECT_EQ(data_error("lines_only.obj", true), data_file("lines_only.obj") + ": empty mesh (no triangles)");
+  EXPECT_EQ(data_error("lines_only.obj", true),
+            test::data_file("lines_only.obj") + ": empty mesh (no triangles)");
 }
 
 TEST_F(MeshIoTest, OffMalformedLines) {
@@ -299,16 +302,16 @@ TEST_F(MeshIoTest, AsciiStlMalformedFacets) {
 // Found by fuzz_mesh_ply: a header with two format lines (ascii, then binary) passed our binary check,
 // assimp parsed it as ASCII, threw, and leaked its mesh.
 TEST(MeshIo, PlyWithTwoFormatLines) {
-  EXPECT_EQ(
-      data_error("fuzz/ply_leak_two_formats.ply"),
-      data_file("fuzz/ply_leak_two_formats.ply") + ": cannot parse: PLY header line 3: second format line");
+  EXPECT_EQ(data_error("fuzz/ply_leak_two_formats.ply"),
+            test::data_file("fuzz/ply_leak_two_formats.ply") +
+                ": cannot parse: PLY header line 3: second format line");
 }
 
 // Found by fuzz_mesh_ply: "end_header" followed by a vertical tab and more words on the same line; our
 // header scan and assimp disagreed on where the binary data starts, and assimp read out of bounds.
 TEST(MeshIo, PlyHeaderControlCharacters) {
   EXPECT_EQ(data_error("fuzz/ply_segv_end_header_vtab.ply"),
-            data_file("fuzz/ply_segv_end_header_vtab.ply") +
+            test::data_file("fuzz/ply_segv_end_header_vtab.ply") +
                 ": cannot parse: PLY header line 10: control character");
 }
 
@@ -321,14 +324,14 @@ TEST_F(MeshIoTest, PlyEndHeaderMustEndItsLine) {
 // assimp (memory overwritten there). Positions x, y, z and a face index list are required by name.
 TEST(MeshIo, PlyNeedsStandardVertexAndFaceProperties) {
   EXPECT_EQ(data_error("fuzz/ply_vertex_without_x.ply"),
-            data_file("fuzz/ply_vertex_without_x.ply") +
+            test::data_file("fuzz/ply_vertex_without_x.ply") +
                 ": cannot parse: PLY 'vertex' element has no scalar property 'x'");
 }
 
 // Found by fuzz_mesh_ply: a closed, consistently wound surface whose signed volume is only round-off; its
 // centre of mass came out 1e7 away and its volume 0 after re-centring. It is no solid.
 TEST(MeshIo, DegenerateVolumeIsRejectedWhenBuildingTheParticle) {
-  const std::string path = data_file("fuzz/ply_degenerate_volume.ply");
+  const std::string path = test::data_file("fuzz/ply_degenerate_volume.ply");
   try {
     (void)repose::load_particle(path, 1.0);
     ADD_FAILURE() << "accepted";
@@ -342,7 +345,7 @@ TEST(MeshIo, DegenerateVolumeIsRejectedWhenBuildingTheParticle) {
 // "81460006007" as a count and tried to allocate 66 GB. A CR is accepted only as part of CRLF.
 TEST(MeshIo, LoneCarriageReturnIsRejected) {
   EXPECT_EQ(data_error("fuzz/off_lone_carriage_return.off"),
-            data_file("fuzz/off_lone_carriage_return.off") + ": line 2: control character (byte 13)");
+            test::data_file("fuzz/off_lone_carriage_return.off") + ": line 2: control character (byte 13)");
 }
 
 TEST_F(MeshIoTest, PlyHeaderChecksElementsAndProperties) {
@@ -360,13 +363,13 @@ TEST_F(MeshIoTest, PlyHeaderChecksElementsAndProperties) {
 // and leaked its mesh. Text formats reject control characters other than tab and line ends.
 TEST(MeshIo, ObjControlCharacter) {
   EXPECT_EQ(data_error("fuzz/obj_leak_nul_byte.obj"),
-            data_file("fuzz/obj_leak_nul_byte.obj") + ": line 4: control character (byte 0)");
+            test::data_file("fuzz/obj_leak_nul_byte.obj") + ": line 4: control character (byte 0)");
 }
 
 // Found by fuzz_mesh_obj: "vv 0 0 0" is a vertex to assimp but an unknown line to a whitespace tokenizer.
 TEST(MeshIo, ObjGluedKeyword) {
   EXPECT_EQ(data_error("fuzz/obj_leak_glued_keyword.obj"),
-            data_file("fuzz/obj_leak_glued_keyword.obj") + ": line 1: unknown keyword 'vv'");
+            test::data_file("fuzz/obj_leak_glued_keyword.obj") + ": line 1: unknown keyword 'vv'");
 }
 
 TEST_F(MeshIoTest, TextFormatsRejectControlCharacters) {
@@ -385,10 +388,10 @@ TEST_F(MeshIoTest, TextFormatsRejectControlCharacters) {
 
 TEST(MeshIo, ReadFromMemoryMatchesReadMesh) {
   for (const char* name : {"cube_ascii.stl", "cube_binary.stl", "cube.obj", "cube_binary.ply", "cube.off"}) {
-    std::ifstream in(data_file(name), std::ios::binary);
+    std::ifstream in(test::data_file(name), std::ios::binary);
     const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const TriangleMesh from_memory = read_mesh_from_memory(bytes, name);
-    const TriangleMesh from_file = read_mesh(data_file(name));
+    const TriangleMesh from_file = read_mesh(test::data_file(name));
     EXPECT_EQ(from_memory.vertices, from_file.vertices) << name;
     EXPECT_EQ(from_memory.triangles, from_file.triangles) << name;
   }
@@ -399,33 +402,37 @@ TEST(MeshIo, ReadFromMemoryMatchesReadMesh) {
 // Files that parse but are not valid solids: validate_mesh names the file and the problem.
 
 TEST(MeshIo, NonFiniteCoordinates) {
-  EXPECT_EQ(data_error("nan.stl", true), data_file("nan.stl") + ": vertex 2 has a non-finite coordinate");
-  EXPECT_EQ(data_error("nan.off", true), data_file("nan.off") + ": vertex 2 has a non-finite coordinate");
+  EXPECT_EQ(data_error("nan.stl", true),
+            test::data_file("nan.stl") + ": vertex 2 has a non-finite coordinate");
+  EXPECT_EQ(data_error("nan.off", true),
+            test::data_file("nan.off") + ": vertex 2 has a non-finite coordinate");
   EXPECT_THAT(data_error("inf.obj", true), HasSubstr("inf.obj: vertex 3 has a non-finite coordinate"));
 }
 
 TEST(MeshIo, OpenSurface) {
-  EXPECT_EQ(
-      data_error("open_cube.off", true),
-      data_file("open_cube.off") + ": open surface: 4 boundary edges (the mesh must be a closed solid)");
+  EXPECT_EQ(data_error("open_cube.off", true),
+            test::data_file("open_cube.off") +
+                ": open surface: 4 boundary edges (the mesh must be a closed solid)");
 }
 
 TEST(MeshIo, NonManifoldSurface) {
-  EXPECT_EQ(
-      data_error("nonmanifold.off", true),
-      data_file("nonmanifold.off") + ": non-manifold surface: 1 edges shared by more than two triangles");
+  EXPECT_EQ(data_error("nonmanifold.off", true),
+            test::data_file("nonmanifold.off") +
+                ": non-manifold surface: 1 edges shared by more than two triangles");
 }
 
 TEST(MeshIo, InconsistentWinding) {
   EXPECT_EQ(data_error("flipped_face.off", true),
-            data_file("flipped_face.off") +
+            test::data_file("flipped_face.off") +
                 ": inconsistent winding: 3 edges whose two triangles face opposite ways");
 }
 
-TEST(MeshIo, ZeroVolume) { EXPECT_EQ(data_error("flat.off", true), data_file("flat.off") + ": zero volume"); }
+TEST(MeshIo, ZeroVolume) {
+  EXPECT_EQ(data_error("flat.off", true), test::data_file("flat.off") + ": zero volume");
+}
 
 TEST(MeshIo, InvertedCubeIsFlipped) {
-  TriangleMesh m = read_mesh(data_file("inverted_cube.off"));
+  TriangleMesh m = read_mesh(test::data_file("inverted_cube.off"));
   EXPECT_DOUBLE_EQ(signed_volume(m), -1.0);
   const MeshReport r = validate_mesh(m, "inverted_cube.off");
   EXPECT_TRUE(r.flipped);

@@ -15,14 +15,13 @@
 #include "repose/error.hpp"
 #include "repose/geometry/mesh.hpp"
 #include "repose/io/mesh_io.hpp"
+#include "test_data.hpp"
 
 namespace repose {
 namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
-
-std::string data_file(const std::string& name) { return std::string(REPOSE_TEST_DATA) + "/" + name; }
 
 // A scratch directory per test.
 class WriteStlTest : public ::testing::Test {
@@ -67,7 +66,7 @@ std::vector<std::array<std::array<double, 3>, 3>> canonical(const TriangleMesh& 
 
 TEST_F(WriteStlTest, WriteThenReadGivesTheSameBox) {
   // A 2 x 3 x 0.5 box whose coordinates are exact in float32.
-  TriangleMesh box = read_mesh(data_file("cube.off"));
+  TriangleMesh box = read_mesh(test::data_file("cube.off"));
   for (Vec3& v : box.vertices) v = v.cwiseProduct(Vec3(2.0, 3.0, 0.5)) + Vec3(-1.0, 0.25, 4.0);
   validate_mesh(box, "box");
   const std::string path = (dir_ / "box.stl").string();
@@ -84,7 +83,7 @@ TEST_F(WriteStlTest, WriteThenReadGivesTheSameBox) {
 }
 
 TEST_F(WriteStlTest, WriteStlNormalsFaceOutward) {
-  TriangleMesh cube = read_mesh(data_file("cube.off"));
+  TriangleMesh cube = read_mesh(test::data_file("cube.off"));
   const std::string path = (dir_ / "cube.stl").string();
   write_stl(cube, path);
   std::ifstream in(path, std::ios::binary);
@@ -104,7 +103,7 @@ TEST_F(WriteStlTest, WriteStlNormalsFaceOutward) {
 }
 
 TEST_F(WriteStlTest, WriteFailureLeavesNothingBehind) {
-  const TriangleMesh cube = read_mesh(data_file("cube.off"));
+  const TriangleMesh cube = read_mesh(test::data_file("cube.off"));
   const std::string missing = (dir_ / "no_such_dir" / "out.stl").string();
   EXPECT_THROW(
       {

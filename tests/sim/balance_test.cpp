@@ -8,13 +8,12 @@
 
 #include "../support/pendulum.hpp"
 #include "../support/zero_margin_prism.hpp"
+#include "gravity.hpp"
 #include "repose/model/particle.hpp"
 #include "repose/sim/settle.hpp"
 
 namespace repose {
 namespace {
-
-constexpr double kG = 9.81;
 
 // A sphere mesh is a smooth surface (the engine's smooth rules). Its vertices are all at the same distance
 // from the centre, so an edge's midpoint direction is perpendicular to the edge: turning that direction
@@ -36,7 +35,7 @@ TEST(Balance, SmoothSphereOnAnEdgeIsTippedOffByTheRuleAndFallsAsAPendulum) {
   SettleParams params;
   params.damping = 0;
   const double phi0 = std::asin(1e-8 * sphere.length / d), phi1 = 0.02;
-  const double time = pendulum::undamped_tip_time(inertia, kG * d, phi0, phi1);
+  const double time = pendulum::undamped_tip_time(inertia, test::kGravitySI * d, phi0, phi1);
   Settler run(sphere, params, q);
   const Vec3 pivot = run.sample().com + run.sample().orientation * (mid - Vec3::Zero());  // on the wall
   ASSERT_NEAR(pivot.z(), 0, 1e-12);

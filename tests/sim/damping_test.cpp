@@ -12,11 +12,10 @@
 #include <vector>
 
 #include "../support/pendulum.hpp"
+#include "gravity.hpp"
 
 namespace repose {
 namespace {
-
-constexpr double kG = 981.0;
 
 // Box 1 × 2 × 3 tilted about x by θ pivots on its edge at body (·, −1, −1.5): the centre of mass is
 // d = sqrt(1 + 1.5²) from it and above it at θc = atan(1/1.5). Closed forms (m = 6): I about the edge =
@@ -31,7 +30,7 @@ struct EdgePendulum {
   }
   static SettleParams params(double damping, Integrator integrator) {
     SettleParams p;
-    p.gravity = kG;
+    p.gravity = test::kGravityCGS;
     p.damping = damping;
     p.integrator = integrator;
     return p;
@@ -39,7 +38,7 @@ struct EdgePendulum {
   static Quat tilt(double theta) { return Quat(Eigen::AngleAxisd(theta, Vec3::UnitX())); }
   // Damping of the same order as the pendulum's own rate: C/I = λ0 = sqrt(m·g·d/I), so λ = 0.618·λ0 and a
   // damping moment off by a factor of two moves λ by 20-25 %.
-  static double damping() { return inertia * std::sqrt(m * kG * d() / inertia); }
+  static double damping() { return inertia * std::sqrt(m * test::kGravityCGS * d() / inertia); }
 };
 
 // Every test runs with both integrators: the paper's fixed step and the adaptive one.
@@ -60,8 +59,8 @@ TEST_P(Damping, BoxLeavesItsEdgeBalanceAtTheDampedPendulumRate) {
   const Particle& box = EdgePendulum::box();
   ASSERT_NEAR(box.mass.mass, EdgePendulum::m, 1e-12);
   const double C = EdgePendulum::damping();
-  const double lambda =
-      pendulum::escape_rate(EdgePendulum::inertia, C, EdgePendulum::m * kG * EdgePendulum::d());
+  const double lambda = pendulum::escape_rate(EdgePendulum::inertia, C,
+                                              EdgePendulum::m * test::kGravityCGS * EdgePendulum::d());
   const double d1 = 1e-6, d2 = 1e-4;
   const SettleResult r1 = settle(box, params(C), EdgePendulum::tilt(EdgePendulum::theta_c() + d1));
   const SettleResult r2 = settle(box, params(C), EdgePendulum::tilt(EdgePendulum::theta_c() + d2));
@@ -92,7 +91,8 @@ TEST_P(Damping, EnergyLostEqualsTheWorkOfTheDampingMoment) {
   ASSERT_EQ(r.status, Status::rest);
   ASSERT_GT(samples.size(), 100u);
   auto energy = [&](const Sample& s) {
-    return 0.5 * EdgePendulum::inertia * s.omega.squaredNorm() + EdgePendulum::m * kG * s.com.z();
+    return 0.5 * EdgePendulum::inertia * s.omega.squaredNorm() +
+           EdgePendulum::m * test::kGravityCGS * s.com.z();
   };
   double work = 0, worst = 0;
   const double e0 = energy(samples.front());
@@ -118,7 +118,7 @@ TEST_P(Damping, HeavierDampingMakesTheSameFallSlowerAsThePendulumSays) {
   // adaptive 1.1e-9, 8.0e-10, 4.1e-10 (the landing located on the dense output, a 4th-order interpolant);
   // tolerances 5e-7 and 1e-8.
   const Particle& box = EdgePendulum::box();
-  const double mgd = EdgePendulum::m * kG * EdgePendulum::d(), I = EdgePendulum::inertia;
+  const double mgd = EdgePendulum::m * test::kGravityCGS * EdgePendulum::d(), I = EdgePendulum::inertia;
   const double phi0 = 0.05, phi_land = std::numbers::pi / 2 - EdgePendulum::theta_c();
   for (double C : {0.0, 0.25 * EdgePendulum::damping(), EdgePendulum::damping()}) {
     // Time to reach phi_land: RK4 on (φ, φ') with the landing located by linear interpolation of the last

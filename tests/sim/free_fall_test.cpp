@@ -7,10 +7,10 @@
 #include <repose/sim/settle.hpp>
 #include <vector>
 
+#include "gravity.hpp"
+
 namespace repose {
 namespace {
-
-constexpr double kG = 981.0;
 
 TEST(FreeFall, ThrownDownItFollowsTheBallisticArcAndStartsWithHalfMVSquared) {
   // Box 1 × 2 × 3 of density 2 (m = 12 g), flat, lowest point h above the wall, thrown down at v. Closed
@@ -20,17 +20,17 @@ TEST(FreeFall, ThrownDownItFollowsTheBallisticArcAndStartsWithHalfMVSquared) {
   const Particle box = load_particle("box:x=1,y=2,z=3", 2.0);
   const double m = 12.0, h = 4.0, v = 150.0;
   SettleParams p;
-  p.gravity = kG;
+  p.gravity = test::kGravityCGS;
   p.drop_height = h;
   p.drop_speed = v;
   std::vector<Sample> samples;
   const SettleResult r = settle(
       box, p, Quat::Identity(), [&](const Sample& s) { samples.push_back(s); }, 1e-3);  // every ms
-  const double e0 = 0.5 * m * v * v + m * kG * (h + 1.5);
+  const double e0 = 0.5 * m * v * v + m * test::kGravityCGS * (h + 1.5);
   EXPECT_NEAR(r.energy_start, e0, 1e-12 * e0);
   ASSERT_FALSE(samples.empty());
   EXPECT_NEAR(samples.front().kinetic_energy, 0.5 * m * v * v, 1e-12 * e0);
-  const double touch = (std::sqrt(v * v + 2 * kG * h) - v) / kG;
+  const double touch = (std::sqrt(v * v + 2 * test::kGravityCGS * h) - v) / test::kGravityCGS;
   ASSERT_FALSE(r.phases.empty());
   EXPECT_EQ(r.phases.front().contact, ContactType::free_fall);
   EXPECT_NEAR(r.phases.front().t1, touch, 1e-12 * touch);
@@ -38,8 +38,11 @@ TEST(FreeFall, ThrownDownItFollowsTheBallisticArcAndStartsWithHalfMVSquared) {
   for (const Sample& s : samples) {
     if (s.contact != ContactType::free_fall || s.t >= touch) continue;
     ++falling;
-    EXPECT_NEAR(s.com.z(), h + 1.5 - v * s.t - 0.5 * kG * s.t * s.t, 1e-12 * (h + 1.5)) << "t = " << s.t;
-    EXPECT_NEAR(s.kinetic_energy, 0.5 * m * (v + kG * s.t) * (v + kG * s.t), 1e-12 * e0) << "t = " << s.t;
+    EXPECT_NEAR(s.com.z(), h + 1.5 - v * s.t - 0.5 * test::kGravityCGS * s.t * s.t, 1e-12 * (h + 1.5))
+        << "t = " << s.t;
+    EXPECT_NEAR(s.kinetic_energy, 0.5 * m * (v + test::kGravityCGS * s.t) * (v + test::kGravityCGS * s.t),
+                1e-12 * e0)
+        << "t = " << s.t;
     EXPECT_NEAR(s.kinetic_energy + s.potential_energy, e0, 1e-12 * e0) << "t = " << s.t;
   }
   EXPECT_GT(falling, 10);
@@ -60,7 +63,7 @@ TEST(FreeFall, ThrownDownFromTheWallItSettlesAsThrownFromJustAbove) {
   const Particle box = load_particle("box:x=1,y=2,z=3", 2.0);
   const Quat tilted(Eigen::AngleAxisd(1.1, Vec3(0.3, 1, 0.2).normalized()));
   SettleParams on_wall;
-  on_wall.gravity = kG;
+  on_wall.gravity = test::kGravityCGS;
   on_wall.drop_speed = 150.0;
   SettleParams just_above = on_wall;
   just_above.drop_height = 1e-9;
@@ -78,7 +81,7 @@ TEST(FreeFall, TossedWithoutSpinItFollowsTheParabolaInAllThreeAxes) {
   const Particle box = load_particle("box:x=1,y=2,z=3", 2.0);
   const double h = 4.0, vx = 30.0, vy = -70.0, vz = 50.0;
   SettleParams p;
-  p.gravity = kG;
+  p.gravity = test::kGravityCGS;
   p.drop_height = h;
   p.velocity = Vec3(vx, vy, vz);
   std::vector<Sample> samples;
@@ -86,12 +89,12 @@ TEST(FreeFall, TossedWithoutSpinItFollowsTheParabolaInAllThreeAxes) {
       box, p, Quat::Identity(), [&](const Sample& s) { samples.push_back(s); }, 1e-3);
   ASSERT_FALSE(samples.empty());
   const Vec3 start = samples.front().com;
-  const double touch = (vz + std::sqrt(vz * vz + 2 * kG * h)) / kG;
+  const double touch = (vz + std::sqrt(vz * vz + 2 * test::kGravityCGS * h)) / test::kGravityCGS;
   int flying = 0;
   for (const Sample& s : samples) {
     if (s.t >= touch) continue;
     ++flying;
-    const Vec3 expected = start + Vec3(vx * s.t, vy * s.t, vz * s.t - 0.5 * kG * s.t * s.t);
+    const Vec3 expected = start + Vec3(vx * s.t, vy * s.t, vz * s.t - 0.5 * test::kGravityCGS * s.t * s.t);
     EXPECT_NEAR((s.com - expected).norm(), 0.0, 1e-12 * (h + 1.5 + std::abs(vy) * touch)) << "t = " << s.t;
   }
   EXPECT_GT(flying, 10);
@@ -109,11 +112,11 @@ TEST(FreeFall, TheAutomaticTimeLimitCountsTheFall) {
   // the cube must still land (at the ballistic time, to 1e-9 relative) and rest.
   const Particle cube = load_particle("box:x=1,y=1,z=1", 1.0);
   SettleParams p;
-  p.gravity = kG;
+  p.gravity = test::kGravityCGS;
   p.drop_height = 8e6 * cube.length;
   const SettleResult r = settle(cube, p, Quat::Identity());
   ASSERT_EQ(r.status, Status::rest);
-  const double touch = std::sqrt(2 * p.drop_height / kG);
+  const double touch = std::sqrt(2 * p.drop_height / test::kGravityCGS);
   EXPECT_NEAR(r.time, touch, 1e-9 * touch);
 }
 
@@ -122,7 +125,7 @@ TEST(FreeFall, AStepLimitOfOneStopsAfterExactlyOneStepOfTheFall) {
   // with status max_steps, the centre of mass at h + ½ − ½·g·dt² (the fall is a closed form: 1e-12).
   const Particle cube = load_particle("box:x=1,y=1,z=1", 1.0);
   SettleParams p;
-  p.gravity = kG;
+  p.gravity = test::kGravityCGS;
   p.drop_height = 2.0;
   p.dt = 1e-3;
   p.max_steps = 1;
@@ -132,7 +135,7 @@ TEST(FreeFall, AStepLimitOfOneStopsAfterExactlyOneStepOfTheFall) {
   EXPECT_EQ(r.steps, 1);
   EXPECT_NEAR(r.time, 1e-3, 1e-15);
   ASSERT_FALSE(samples.empty());
-  EXPECT_NEAR(samples.back().com.z(), 2.5 - 0.5 * kG * 1e-6, 1e-12);
+  EXPECT_NEAR(samples.back().com.z(), 2.5 - 0.5 * test::kGravityCGS * 1e-6, 1e-12);
 }
 
 TEST(FreeFall, ATimeLimitInsideTheFallStopsItExactlyThere) {
@@ -142,7 +145,7 @@ TEST(FreeFall, ATimeLimitInsideTheFallStopsItExactlyThere) {
   // form, 1e-12), and the observer sees that last state.
   const Particle cube = load_particle("box:x=1,y=1,z=1", 1.0);
   SettleParams p;
-  p.gravity = kG;
+  p.gravity = test::kGravityCGS;
   p.drop_height = 2.0;
   p.dt = 1e-3;
   p.max_time = 0.0105;
@@ -153,7 +156,7 @@ TEST(FreeFall, ATimeLimitInsideTheFallStopsItExactlyThere) {
   EXPECT_EQ(r.steps, 10);
   ASSERT_FALSE(samples.empty());
   EXPECT_EQ(samples.back().t, r.time);
-  EXPECT_NEAR(samples.back().com.z(), 2.5 - 0.5 * kG * 0.0105 * 0.0105, 1e-12);
+  EXPECT_NEAR(samples.back().com.z(), 2.5 - 0.5 * test::kGravityCGS * 0.0105 * 0.0105, 1e-12);
 }
 
 }  // namespace

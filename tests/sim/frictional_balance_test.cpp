@@ -5,18 +5,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <repose/model/particle.hpp>
 #include <repose/poses/sampling.hpp>
 #include <repose/sim/settle.hpp>
 #include <string>
 
 #include "../support/zero_margin_prism.hpp"
+#include "gravity.hpp"
 
 namespace repose {
 namespace {
-
-constexpr double kG = 9.81;
-constexpr double kPi = 3.141592653589793;
 
 // The 5-sided prism of Baktash et al. 2025 (data/experiments/baktash2025) has a face (2) whose stability
 // margin is 0 to round-off (-2e-12·L): its designers put the centre of mass on its boundary. Drop 36 of seed
@@ -33,8 +32,9 @@ TEST(FrictionalContact, BalanceOnAFaceOfZeroMarginIsTippedOff) {
   p.restitution = 0.1;
   p.friction = 0.1;
   p.drop_height = 4 * L;
-  p.damping = 0.05 * prism.mass.mass * std::sqrt(kG * L * L * L);
-  const Toss toss = drop_toss(1, 36, {1.5 * std::sqrt(kG * L), 1.5 * std::sqrt(kG / L)});
+  p.damping = 0.05 * prism.mass.mass * std::sqrt(test::kGravitySI * L * L * L);
+  const Toss toss =
+      drop_toss(1, 36, {1.5 * std::sqrt(test::kGravitySI * L), 1.5 * std::sqrt(test::kGravitySI / L)});
   p.velocity = toss.velocity;
   p.spin = toss.spin;
   const SettleResult r = settle(prism, p, drop_orientation(1, 36));
@@ -52,7 +52,7 @@ TEST(FrictionalContact, BalanceOnAFaceOfZeroMarginIsTippedOff) {
 TEST(FrictionalContact, StillOnAnEdgeGoesOverToTheSideItsCentreOfMassLeansTo) {
   const Particle cube = load_particle("box:x=1,y=1,z=1", 1000.0);
   for (const double lean : {1e-12, -1e-12}) {
-    const Quat q(Eigen::AngleAxisd(kPi / 4 + lean, Vec3::UnitY()));
+    const Quat q(Eigen::AngleAxisd(std::numbers::pi / 4 + lean, Vec3::UnitY()));
     // The edge on the wall: the lowest vertices (in the frame where the centre of mass is at x = 0).
     double lowest = INFINITY, edge_x = 0;
     for (const Vec3& v : cube.hull.vertices) lowest = std::min(lowest, (q * v).z());
@@ -104,7 +104,7 @@ TEST(FrictionalContact, PrismOnAFaceOfZeroMarginTipsOverTheEdgeUnderItsCentreOfM
     ASSERT_EQ(r.status, Status::rest) << mu;
     EXPECT_EQ(r.rest_face, bc) << "mu " << mu;
     if (mu == 2.0) {
-      EXPECT_NEAR(r.com.x(), std::sin(kPi / 4) / 3, 1e-6 * prism.length);
+      EXPECT_NEAR(r.com.x(), std::sin(std::numbers::pi / 4) / 3, 1e-6 * prism.length);
     }
   }
 }

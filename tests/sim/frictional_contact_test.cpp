@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <repose/model/particle.hpp>
 #include <repose/poses/sampling.hpp>
 #include <repose/sim/settle.hpp>
@@ -12,11 +13,10 @@
 #include <tuple>
 #include <vector>
 
+#include "gravity.hpp"
+
 namespace repose {
 namespace {
-
-constexpr double kG = 9.81;
-constexpr double kPi = 3.141592653589793;
 
 SettleParams sliding_start(const Vec3& velocity, double mu) {
   SettleParams p;
@@ -45,7 +45,7 @@ TEST(FrictionalContact, FirstSampleOfAWallStartShowsItsPointsAndTheirModes) {
     EXPECT_EQ(s.sticking, v > 0 ? 0 : 4) << v;
   }
   // On an edge (turned 45° about x): its two corners, a line; on a corner (its diagonal vertical): a point.
-  const Quat edge(Eigen::AngleAxisd(kPi / 4, Vec3::UnitX()));
+  const Quat edge(Eigen::AngleAxisd(std::numbers::pi / 4, Vec3::UnitX()));
   const Quat corner = Quat::FromTwoVectors(Vec3(-1, -1, -1).normalized(), -Vec3::UnitZ());
   for (const auto& [q, type, count] :
        {std::tuple{edge, ContactType::line, 2}, {corner, ContactType::point, 1}}) {
@@ -65,23 +65,23 @@ TEST(FrictionalContact, FirstSampleOfAWallStartShowsItsPointsAndTheirModes) {
 // (1e-9 relative: the ledger's integration).
 TEST(FrictionalContact, BoxSlidingFlatStopsAtTheClosedForm) {
   const Particle cube = load_particle("box:x=1,y=1,z=1", 1000.0);
-  const double L = cube.length, tau = std::sqrt(L / kG), m = cube.mass.mass;
+  const double L = cube.length, tau = std::sqrt(L / test::kGravitySI), m = cube.mass.mass;
   for (const double mu : {0.2, 0.5, 1.0}) {
     for (const Vec3& dir : {Vec3(1, 0, 0), Vec3(0, -1, 0), Vec3(0.6, 0.8, 0)}) {
       const double v0 = 1.5;
       const SettleResult r = settle(cube, sliding_start(v0 * dir, mu), Quat::Identity());
       ASSERT_EQ(r.status, Status::rest) << mu;
-      const double d = v0 * v0 / (2 * mu * kG);
+      const double d = v0 * v0 / (2 * mu * test::kGravitySI);
       EXPECT_NEAR(r.com.x(), d * dir.x(), 1e-12 * L) << "mu " << mu;
       EXPECT_NEAR(r.com.y(), d * dir.y(), 1e-12 * L) << "mu " << mu;
       EXPECT_NEAR(r.com.z(), 0.5, 1e-12 * L);
-      EXPECT_NEAR(r.time, v0 / (mu * kG), 2e-9 * tau / mu) << "mu " << mu;
+      EXPECT_NEAR(r.time, v0 / (mu * test::kGravitySI), 2e-9 * tau / mu) << "mu " << mu;
       EXPECT_NEAR(r.orientation.angularDistance(Quat::Identity()), 0, 1e-12) << "no pitch, no yaw";
       EXPECT_TRUE(r.impacts.empty());
       EXPECT_FALSE(has_line_phase(r)) << "the back edge never lifts at mu = " << mu;
-      EXPECT_NEAR(r.friction_work, 0.5 * m * v0 * v0, 1e-9 * m * kG * L);
+      EXPECT_NEAR(r.friction_work, 0.5 * m * v0 * v0, 1e-9 * m * test::kGravitySI * L);
       EXPECT_NEAR(r.sliding_distance, d, 1e-9 * L);
-      EXPECT_NEAR(r.energy_start - r.energy_end, r.friction_work, 1e-9 * m * kG * L);
+      EXPECT_NEAR(r.energy_start - r.energy_end, r.friction_work, 1e-9 * m * test::kGravitySI * L);
     }
   }
 }
@@ -105,7 +105,7 @@ TEST(FrictionalContact, TallBoxTipsIfAndOnlyIfMuExceedsOneThird) {
       const SettleResult r = settle(tall, sliding_start(Vec3(1, 0, 0), mu), Quat::Identity());
       ASSERT_EQ(r.status, Status::rest);
       EXPECT_FALSE(has_line_phase(r)) << "mu " << mu << ": slides flat";
-      EXPECT_NEAR(r.com.x(), 1 / (2 * mu * kG), 1e-12 * L) << mu;
+      EXPECT_NEAR(r.com.x(), 1 / (2 * mu * test::kGravitySI), 1e-12 * L) << mu;
     } else {
       EXPECT_GT(back, 1e-9 * L) << "mu " << mu << " above 1/3: the back edge lifts";
       EXPECT_EQ(s.sliding + s.sticking, 2) << "mu " << mu << ": the front edge alone is pressed";
@@ -122,19 +122,19 @@ TEST(FrictionalContact, TallBoxTipsIfAndOnlyIfMuExceedsOneThird) {
 // it.
 TEST(FrictionalContact, SpinningDiskStopsWhereFrictionsTorqueSays) {
   const Particle disk = load_particle("cylinder:r=0.5,h=0.1,n=32", 1000.0);
-  const double m = disk.mass.mass, R = 0.5, mu = 0.3, w0 = 5, tau = std::sqrt(disk.length / kG);
-  const double J = m * R * R * (1 + 2 * std::pow(std::cos(kPi / 32), 2)) / 6;
+  const double m = disk.mass.mass, R = 0.5, mu = 0.3, w0 = 5, tau = std::sqrt(disk.length / test::kGravitySI);
+  const double J = m * R * R * (1 + 2 * std::pow(std::cos(std::numbers::pi / 32), 2)) / 6;
   SettleParams p;
   p.friction = mu;
   p.spin = Vec3(0, 0, w0);
   const SettleResult r = settle(disk, p, Quat::Identity());
   ASSERT_EQ(r.status, Status::rest);
-  const double T = J * w0 / (mu * m * kG * R);
+  const double T = J * w0 / (mu * m * test::kGravitySI * R);
   EXPECT_NEAR(r.time, T, 1e-8 * tau);
   EXPECT_NEAR(r.orientation.angularDistance(Quat::Identity()), w0 * T / 2, w0 * 1e-8 * tau);
   EXPECT_NEAR(r.com.head<2>().norm(), 0, 1e-12);
   EXPECT_TRUE(r.impacts.empty());
-  EXPECT_NEAR(r.friction_work, 0.5 * J * w0 * w0, 1e-9 * m * kG * disk.length);
+  EXPECT_NEAR(r.friction_work, 0.5 * J * w0 * w0, 1e-9 * m * test::kGravitySI * disk.length);
 }
 
 // A 32-gon cylinder (R = 0.5, h = 1) standing on its end, launched sliding along x: friction's moment
@@ -144,12 +144,12 @@ TEST(FrictionalContact, SpinningDiskStopsWhereFrictionsTorqueSays) {
 // the closed form (tolerances as the sliding box's); above it the back rim lifts (0.02 s later above 1e-9·L).
 TEST(FrictionalContact, StandingCylinderSlidesOnAPartlyLoadedBaseUntilItTips) {
   const Particle cyl = load_particle("cylinder:r=0.5,h=1,n=32", 1000.0);
-  const double L = cyl.length, tau = std::sqrt(L / kG), v0 = 1.5;
+  const double L = cyl.length, tau = std::sqrt(L / test::kGravitySI), v0 = 1.5;
   for (const double mu : {0.3, 0.6, 0.8, 0.98}) {
     const SettleResult r = settle(cyl, sliding_start(Vec3(v0, 0, 0), mu), Quat::Identity());
     ASSERT_EQ(r.status, Status::rest) << mu;
-    EXPECT_NEAR(r.com.x(), v0 * v0 / (2 * mu * kG), 1e-12 * L) << "mu " << mu;
-    EXPECT_NEAR(r.time, v0 / (mu * kG), 2e-9 * tau / mu) << "mu " << mu;
+    EXPECT_NEAR(r.com.x(), v0 * v0 / (2 * mu * test::kGravitySI), 1e-12 * L) << "mu " << mu;
+    EXPECT_NEAR(r.time, v0 / (mu * test::kGravitySI), 2e-9 * tau / mu) << "mu " << mu;
     EXPECT_NEAR(r.orientation.angularDistance(Quat::Identity()), 0, 1e-12) << "mu " << mu << ": no pitch";
     EXPECT_TRUE(r.impacts.empty()) << "mu " << mu;
   }
@@ -170,7 +170,7 @@ TEST(FrictionalContact, CylinderSlidingOnItsSideRollsAtTwoThirdsFromTheClosedFor
   const double mu = 0.3, v0 = 1.0;
   SettleParams p = sliding_start(Vec3(v0, 0, 0), mu);
   p.max_time = 0.3;
-  Settler settler(cyl, p, Quat(Eigen::AngleAxisd(kPi / 2, Vec3::UnitX())));
+  Settler settler(cyl, p, Quat(Eigen::AngleAxisd(std::numbers::pi / 2, Vec3::UnitX())));
   double prev_x = 0, prev_t = 0, stop = -1, speed = 0;
   for (double t = 1e-4; t <= 0.25 && settler.status() == Status::running; t += 1e-4) {
     settler.advance_to(t);
@@ -184,7 +184,7 @@ TEST(FrictionalContact, CylinderSlidingOnItsSideRollsAtTwoThirdsFromTheClosedFor
     prev_x = s.com.x();
     prev_t = s.t;
   }
-  const double t_roll = v0 / (3 * mu * kG);
+  const double t_roll = v0 / (3 * mu * test::kGravitySI);
   EXPECT_NEAR(stop, t_roll, 2e-3 * t_roll + 2e-4);
   EXPECT_NEAR(speed, 2 * v0 / 3, 2e-3 * v0);
 }
@@ -234,10 +234,10 @@ TEST(FrictionalContact, RodFootSlipsAtTheClosedFormAngle) {
 #endif
   for (const double mu : frictions) {
     const auto ratio = [&](double phi) {
-      const double w2 = 2 * m * kG * r * (std::cos(phi0) - std::cos(phi)) / io;
-      const double al = m * kG * r * std::sin(phi) / io;
+      const double w2 = 2 * m * test::kGravitySI * r * (std::cos(phi0) - std::cos(phi)) / io;
+      const double al = m * test::kGravitySI * r * std::sin(phi) / io;
       return r * (al * std::cos(phi) - w2 * std::sin(phi)) /
-             (kG - r * (al * std::sin(phi) + w2 * std::cos(phi)));
+             (test::kGravitySI - r * (al * std::sin(phi) + w2 * std::cos(phi)));
     };
     double lo = phi0, hi = phi0;
     while (ratio(hi) < mu) {
@@ -295,13 +295,14 @@ TEST(FrictionalContact, EnergyLedgerClosesForTossedLandings) {
     ASSERT_EQ(r.status, Status::rest) << mu;
     double impacts = 0;
     for (const ImpactRecord& i : r.impacts) {
-      EXPECT_LE(i.energy_after, i.energy_before + 1e-12 * m * kG * L);
+      EXPECT_LE(i.energy_after, i.energy_before + 1e-12 * m * test::kGravitySI * L);
       impacts += i.energy_before - i.energy_after;
     }
     EXPECT_GE(r.friction_work, 0);
     EXPECT_GE(r.damping_work, 0);
     const double lost = r.energy_start - r.energy_end;
-    EXPECT_NEAR(lost, r.friction_work + r.damping_work + impacts, 1e-6 * m * kG * L) << "mu " << mu;
+    EXPECT_NEAR(lost, r.friction_work + r.damping_work + impacts, 1e-6 * m * test::kGravitySI * L)
+        << "mu " << mu;
     EXPECT_LE(r.max_penetration, 1e-9 * L);
   }
 }
@@ -346,7 +347,7 @@ TEST(FrictionalContact, FrictionlessLandingKeepsTheHorizontalVelocity) {
   p.drop_height = 1e-3;
   p.velocity = Vec3(2, 0, -1);
   p.friction = 0;
-  Settler settler(rod, p, Quat(Eigen::AngleAxisd(kPi / 4, Vec3::UnitY())));
+  Settler settler(rod, p, Quat(Eigen::AngleAxisd(std::numbers::pi / 4, Vec3::UnitY())));
   const Vec3 c0 = settler.sample().com;
   for (double t = 1e-3; t < 0.3 && settler.status() == Status::running; t += 1e-3) {
     settler.advance_to(t);
@@ -386,7 +387,7 @@ TEST(FrictionalContact, ThrownDownFromTheWallStrikesByTheImpactLaw) {
 TEST(FrictionalContact, PainleveRodJamsByAnImpactWithoutCollision) {
   const Particle rod = load_particle("box:x=1,y=0.05,z=0.05", 1.0);
   const double m = rod.mass.mass;
-  const Quat q(Eigen::AngleAxisd(-kPi / 4, Vec3::UnitY()));
+  const Quat q(Eigen::AngleAxisd(-std::numbers::pi / 4, Vec3::UnitY()));
   const Vec3 r = q * Vec3(-0.5, 0, -0.025);
   const double inertia = m * (1 + 0.05 * 0.05) / 12;
   const double i_foot = inertia + m * (r.x() * r.x() + r.z() * r.z());

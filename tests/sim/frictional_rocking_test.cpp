@@ -11,10 +11,10 @@
 #include <repose/sim/settle.hpp>
 #include <vector>
 
+#include "gravity.hpp"
+
 namespace repose {
 namespace {
-
-constexpr double kG = 9.81;
 
 // A rectangular block with half-width w (across its rocking edges) and half-height c, rocking about one base
 // edge then the other (Housner): R = sqrt(w² + c²), α = atan(w/c), I_O = 4/3·m·R², p² = m·g·R/I_O. Rotating
@@ -25,7 +25,7 @@ struct Housner {
   double alpha, p2, r;
   Housner(double w, double c)
       : alpha(std::atan(w / c)),
-        p2(3 * kG / (4 * std::hypot(w, c))),
+        p2(3 * test::kGravitySI / (4 * std::hypot(w, c))),
         r(1 - 1.5 * std::pow(std::sin(alpha), 2)) {}
 
   // Released at rest at tilt φ0: the time to fall flat, ∫0^φ0 dφ / sqrt(2p²·(cos(α − φ0) − cos(α − φ))). With
@@ -61,7 +61,7 @@ struct Housner {
 // at the first impact that leaves less, with Housner's remaining swings, a convergent series, still to come.
 TEST(FrictionalRocking, BlockRocksToHousnersSeriesAndItsAccumulationEnds) {
   const Particle block = load_particle("box:x=1,y=1,z=3", 1000.0);
-  const double m = block.mass.mass, L = block.length, tau = std::sqrt(L / kG);
+  const double m = block.mass.mass, L = block.length, tau = std::sqrt(L / test::kGravitySI);
   const Housner h(0.5, 1.5);
   ASSERT_NEAR(h.r, 0.85, 1e-12);
   const double phi0 = 0.1 * h.alpha;
@@ -70,7 +70,7 @@ TEST(FrictionalRocking, BlockRocksToHousnersSeriesAndItsAccumulationEnds) {
   p.restitution = 0;
   const SettleResult res = settle(block, p, Quat(Eigen::AngleAxisd(phi0, Vec3::UnitX())));
   ASSERT_EQ(res.status, Status::rest);
-  const double flat = m * kG * 1.5, rest_energy = m * kG * 1e-7 * L;
+  const double flat = m * test::kGravitySI * 1.5, rest_energy = m * test::kGravitySI * 1e-7 * L;
   const double inertia_edge = 4.0 / 3 * m * (0.25 + 2.25);
   // Housner's impacts up to the first that leaves less than the rest energy.
   std::vector<double> times{h.fall_time(phi0)};
@@ -83,7 +83,8 @@ TEST(FrictionalRocking, BlockRocksToHousnersSeriesAndItsAccumulationEnds) {
   for (std::size_t k = 0; k < times.size(); ++k) {
     const ImpactRecord& imp = res.impacts[k];
     EXPECT_NEAR(imp.t, times[k], 1e-5 * tau) << "impact " << k;
-    EXPECT_NEAR(imp.energy_after - flat, h.r * h.r * (imp.energy_before - flat), 1e-11 * m * kG * L)
+    EXPECT_NEAR(imp.energy_after - flat, h.r * h.r * (imp.energy_before - flat),
+                1e-11 * m * test::kGravitySI * L)
         << "impact " << k;
   }
   // The rest comes at the last impact; Housner's remaining swings after it sum to less than a geometric
@@ -114,7 +115,7 @@ TEST(FrictionalRocking, BlockRockingWhileItSlidesStopsAtTheMomentumBalance) {
     p.spin = Vec3(spin, 0, 0);
     const SettleResult r = settle(block, p, Quat::Identity());
     ASSERT_EQ(r.status, Status::rest) << spin;
-    EXPECT_NEAR(r.time, v0 / (mu * kG), 2e-5) << "spin " << spin;
+    EXPECT_NEAR(r.time, v0 / (mu * test::kGravitySI), 2e-5) << "spin " << spin;
     EXPECT_NEAR(r.com.x(), 0, 1e-12) << "no sideways motion";
     EXPECT_LT(r.impacts.size(), 100u) << "spin " << spin << ": the accumulation of impacts ends";
     EXPECT_LT(r.steps, 200) << "spin " << spin;

@@ -6,13 +6,12 @@
 #include <numbers>
 
 #include "../support/pendulum.hpp"
+#include "gravity.hpp"
 #include "repose/model/particle.hpp"
 #include "repose/sim/settle.hpp"
 
 namespace repose {
 namespace {
-
-constexpr double kG = 9.81;
 
 class PaperEnd : public ::testing::TestWithParam<Integrator> {};
 
@@ -34,11 +33,13 @@ TEST_P(PaperEnd, CubeTippingOffItsEdgeIsStableWhenItsFaceEntersTheBand) {
     const SettleResult r = settle(cube, params, q);
     ASSERT_EQ(r.status, Status::rest);
     const double theta = std::asin(params.contact_threshold * cube.length);
-    const double expected = pendulum::undamped_tip_time(inertia, kG * d, delta, std::numbers::pi / 4 - theta);
+    const double expected =
+        pendulum::undamped_tip_time(inertia, test::kGravitySI * d, delta, std::numbers::pi / 4 - theta);
     const double tol = 5e-7;
     EXPECT_NEAR(r.stable_time, expected, tol * expected) << "delta " << delta;
     // The paper stops there; repose finishes the rotation onto the face, later.
-    const double landing = pendulum::undamped_tip_time(inertia, kG * d, delta, std::numbers::pi / 4);
+    const double landing =
+        pendulum::undamped_tip_time(inertia, test::kGravitySI * d, delta, std::numbers::pi / 4);
     EXPECT_NEAR(r.time, landing, tol * landing) << "delta " << delta;
   }
 }

@@ -22,10 +22,10 @@
 #include <vector>
 
 #include "../support/equilibrium_oracle.hpp"
+#include "gravity.hpp"
 
 namespace repose::property {
 
-constexpr double kG = 981.0;
 constexpr double kDensity = 1.2;
 
 /// splitmix64 → doubles in [0, 1): the only source of randomness (no std distributions, whose output is
@@ -206,20 +206,20 @@ inline Case make_case(std::uint64_t master, int index, bool full = false, bool c
 
 inline SettleParams params_for(const Case& c, const Particle& p) {
   SettleParams prm;
-  prm.gravity = kG;
+  prm.gravity = test::kGravityCGS;
   prm.smooth = c.smooth;
   prm.integrator = c.integrator;
   prm.tolerance = c.tolerance;
   prm.drop_height = c.drop_height >= 0 ? c.drop_height : c.drop_fraction * p.length;
-  prm.damping = c.damping >= 0
-                    ? c.damping
-                    : c.damping_fraction * p.mass.mass * p.length * p.length * std::sqrt(kG / p.length);
+  prm.damping = c.damping >= 0 ? c.damping
+                               : c.damping_fraction * p.mass.mass * p.length * p.length *
+                                     std::sqrt(test::kGravityCGS / p.length);
   if (c.max_steps > 0) prm.max_steps = c.max_steps;
   if (c.tossed) {
     prm.restitution = c.restitution;
     prm.friction = c.friction;
-    prm.velocity = c.velocity_fraction * std::sqrt(kG * p.length);
-    prm.spin = c.spin_fraction * std::sqrt(kG / p.length);
+    prm.velocity = c.velocity_fraction * std::sqrt(test::kGravityCGS * p.length);
+    prm.spin = c.spin_fraction * std::sqrt(test::kGravityCGS / p.length);
   }
   return prm;
 }
@@ -345,7 +345,7 @@ inline double face_width(const Particle& p, int face) {
 inline Outcome run_case(const Case& c, const Particle& p) {
   Outcome o;
   const double L = p.length;
-  const double mgl = p.mass.mass * kG * L;
+  const double mgl = p.mass.mass * test::kGravityCGS * L;
   const SettleParams prm = params_for(c, p);
   auto fail = [&](const std::string& what) { o.violations.push_back(what); };
 
@@ -417,7 +417,7 @@ inline Outcome run_case(const Case& c, const Particle& p) {
     fail("energy rose by " + num17(o.max_energy_rise) + " m·g·L between consecutive samples");
 
   if (prm.drop_height > 0 && !c.tossed) {
-    const double touch = std::sqrt(2 * prm.drop_height / kG);
+    const double touch = std::sqrt(2 * prm.drop_height / test::kGravityCGS);
     if (r.phases.empty() || r.phases.front().contact != ContactType::free_fall ||
         std::abs(r.phases.front().t1 - touch) > 1e-9 * touch)
       fail("free fall did not end at sqrt(2h/g) = " + num17(touch));
@@ -456,7 +456,7 @@ inline Outcome run_case(const Case& c, const Particle& p) {
     // particles too (they rest only by landing on three points of their bottom facet). The factor 1.5 leaves
     // room for the gyroscopic term, which the bound leaves out.
     const double step = r.time - t_prev;
-    const double alpha = p.mass.mass * kG * L / p.mass.principal_moments.minCoeff();
+    const double alpha = p.mass.mass * test::kGravityCGS * L / p.mass.principal_moments.minCoeff();
     // The frictional phase (finite μ) lays the face flush once all its points are within its band of the
     // wall, 1e-7·L (kFrictionalBand, docs/method.md): a turn of at most band / w, w the face's smallest
     // width.

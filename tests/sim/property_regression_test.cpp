@@ -10,13 +10,13 @@
 #include <vector>
 
 #include "../support/pendulum.hpp"
+#include "gravity.hpp"
 #include "property_cases.hpp"
 
 namespace repose {
 namespace {
 
 using property::Case;
-using property::kG;
 using property::Outcome;
 
 // ---- known answers
@@ -24,7 +24,7 @@ using property::Outcome;
 
 SettleParams cgs() {
   SettleParams p;
-  p.gravity = kG;
+  p.gravity = test::kGravityCGS;
   return p;
 }
 
@@ -37,7 +37,8 @@ SettleParams cgs() {
 // at λ·dt = 1.1e-3; the tolerance 1e-6 is 6× that, and a damping, gravity or inertia off by 1e-5 fails.
 TEST(PropertyKnownAnswer, CubeBalancedOnAnEdgeTipsOffAfterThePendulumTime) {
   const Particle cube = load_particle("box:x=1,y=1,z=1", 1.0);
-  const double d = std::sqrt(0.5), inertia = 2.0 / 3.0, m_g_d = kG * d;  // per unit mass (m = 1)
+  const double d = std::sqrt(0.5), inertia = 2.0 / 3.0,
+               m_g_d = test::kGravityCGS * d;  // per unit mass (m = 1)
   const double phi0 = std::asin(1e-8 * cube.length / d);
   const double expected = pendulum::undamped_tip_time(inertia, m_g_d, phi0, std::numbers::pi / 4);
   // Exactly balanced about x and y, and about x leaning by ±5e-10·L (inside the 1e-9·L balance window): the
@@ -71,7 +72,7 @@ TEST(PropertyKnownAnswer, CubeBalancedOnAnEdgeTipsOffAfterThePendulumTime) {
 // the pendulum's time from that tilt (the same quadrature, φ0 = |δ|; measured relative error ≤ 1.5e-7).
 TEST(PropertyKnownAnswer, CubeJustOffItsEdgeFallsTheWayItLeans) {
   const Particle cube = load_particle("box:x=1,y=1,z=1", 1.0);
-  const double d = std::sqrt(0.5), inertia = 2.0 / 3.0, m_g_d = kG * d;
+  const double d = std::sqrt(0.5), inertia = 2.0 / 3.0, m_g_d = test::kGravityCGS * d;
   for (double delta : {1e-3, -1e-3, 1e-6, -1e-6}) {
     Case c;
     c.spec = "box:x=1,y=1,z=1";
@@ -96,7 +97,7 @@ TEST(PropertyKnownAnswer, FlatDropTouchesAtTheBallisticTime) {
     SettleParams p = cgs();
     p.drop_height = rng.uniform(0.01, 3.0) * box.length;
     const SettleResult r = settle(box, p, Quat::Identity());
-    const double expected = std::sqrt(2 * p.drop_height / kG);
+    const double expected = std::sqrt(2 * p.drop_height / test::kGravityCGS);
     ASSERT_FALSE(r.phases.empty()) << spec;
     EXPECT_EQ(r.phases.front().contact, ContactType::free_fall) << spec;
     EXPECT_NEAR(r.phases.front().t1, expected, 1e-12 * expected) << spec << " h=" << p.drop_height;
@@ -187,7 +188,7 @@ TEST(PropertyEngineBug, FirstStepFromRestDoesNotRotate) {
   const Sample s0 = settler.sample();
   ASSERT_TRUE(settler.step());
   const Sample s1 = settler.sample();
-  const double mgl = cyl.mass.mass * kG * cyl.length;
+  const double mgl = cyl.mass.mass * test::kGravityCGS * cyl.length;
   EXPECT_GT(s1.omega.norm(), 0);
   EXPECT_GT(s1.orientation.angularDistance(s0.orientation), 0)
       << "spinning at |ω| = " << s1.omega.norm() << " after a step that did not rotate";

@@ -37,13 +37,13 @@
 #include <utility>
 #include <vector>
 
+#include "gravity.hpp"
 #include "property_cases.hpp"
 
 namespace repose {
 namespace {
 
 using property::Case;
-using property::kG;
 using property::Outcome;
 using property::ShapeClass;
 

@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
+#include "gravity.hpp"
+
 namespace repose {
 namespace {
-
-constexpr double kG = 9.81;
 
 // The sanitizer build runs the engine ~10x slower: fewer tosses there (the claims hold for every toss).
 // With finite friction a toss ends in the frictional contact phase (src/sim/phases/frictional_contact.hpp;
@@ -31,7 +31,7 @@ Quat vertex_down(const Particle& p, int k) {
   return Quat::FromTwoVectors(p.hull.vertices[static_cast<std::size_t>(k)], -Vec3::UnitZ());
 }
 
-double v0_of(double h) { return std::sqrt(2 * kG * h); }
+double v0_of(double h) { return std::sqrt(2 * test::kGravitySI * h); }
 
 TEST(Rebound, ABallBouncesToTheGeometricSeriesOfApexesAndStopsAtItsSum) {
   // A fine sphere-like mesh (2,000 facets) on a vertex straight below its centre, frictionless, E = 0.5,
@@ -47,13 +47,13 @@ TEST(Rebound, ABallBouncesToTheGeometricSeriesOfApexesAndStopsAtItsSum) {
   p.friction = 0;
   const SettleResult r = settle(ball, p, vertex_down(ball, 0));
   ASSERT_EQ(r.status, Status::rest);
-  const double t0 = std::sqrt(2 * h / kG), v0 = std::sqrt(2 * kG * h);
+  const double t0 = std::sqrt(2 * h / test::kGravitySI), v0 = std::sqrt(2 * test::kGravitySI * h);
   ASSERT_GT(r.impacts.size(), 10u);
   // With finite friction the contact phase after the hand-over is the frictional one: its touches slower
   // than sqrt(2·g·1e-7·L) (they cannot leave its band again) are plastic and end the series there. The ball
   // is then balanced on its vertex straight below its centre (an unstable balance): it topples from
   // round-off much later and strikes its facets, which is not part of the series.
-  const double separation = std::sqrt(2 * kG * 1e-7 * ball.length);
+  const double separation = std::sqrt(2 * test::kGravitySI * 1e-7 * ball.length);
   std::size_t series = 0;
   while (series < r.impacts.size() && std::abs(r.impacts[series].normal_speed_after) > 1e-12 * v0_of(h))
     ++series;
@@ -91,7 +91,7 @@ TEST(Rebound, ABallBouncesToTheGeometricSeriesOfApexesAndStopsAtItsSum) {
 // cannot move an impact across; the times as above, within 1e-9 of t0. Threshold 0: the whole series.
 TEST(Rebound, ImpactsBelowTheRestitutionThresholdArePlastic) {
   const Particle ball = load_particle("ellipsoid:a=0.5,b=0.5,c=0.5,n=10", 1000.0);
-  const double e = 0.5, h = 1.0, v0 = v0_of(h), t0 = std::sqrt(2 * h / kG);
+  const double e = 0.5, h = 1.0, v0 = v0_of(h), t0 = std::sqrt(2 * h / test::kGravitySI);
   for (const int rebounds : {1, 3, 6}) {
     SettleParams p;
     p.drop_height = h;
@@ -133,13 +133,14 @@ TEST(Rebound, ABoxDroppedFlatReboundsStraightUpWithoutTurning) {
         },
         1e-3);
     ASSERT_GE(r.impacts.size(), 2u);
-    const double v = std::sqrt(2 * kG * 0.3);
+    const double v = std::sqrt(2 * test::kGravitySI * 0.3);
     EXPECT_EQ(r.impacts[0].points, 4);
     EXPECT_NEAR(r.impacts[0].normal_speed_before, -v, 1e-12 * v);
     EXPECT_NEAR(r.impacts[0].normal_speed_after, 0.6 * v, 1e-12 * v);
     ASSERT_FALSE(flight.empty());
     for (const Sample& s : flight) {
-      EXPECT_LE(s.omega.norm(), 1e-12 * std::sqrt(kG / box.length)) << "mu " << mu << " t " << s.t;
+      EXPECT_LE(s.omega.norm(), 1e-12 * std::sqrt(test::kGravitySI / box.length))
+          << "mu " << mu << " t " << s.t;
       EXPECT_NEAR(s.com.x(), 0, 1e-12 * box.length);
       EXPECT_NEAR(s.com.y(), 0, 1e-12 * box.length);
     }
@@ -213,14 +214,15 @@ TEST(Rebound, AFreeBodyKeepsItsAngularMomentumAndEnergyInFlight) {
   for (const Sample& s : flight) {
     EXPECT_NEAR((momentum(s) - l0).norm(), 0, 1e-7 * l0.norm()) << "t " << s.t;
     EXPECT_NEAR(0.5 * s.omega.dot(momentum(s)), k0, 1e-7 * k0) << "t " << s.t;
-    const Vec3 c = c0 + p.velocity * s.t - Vec3(0, 0, 0.5 * kG * s.t * s.t);
+    const Vec3 c = c0 + p.velocity * s.t - Vec3(0, 0, 0.5 * test::kGravitySI * s.t * s.t);
     EXPECT_NEAR((s.com - c).norm(), 0, 1e-12 * c0.z()) << "t " << s.t;
     // The sample's kinetic energy: ½·m·|v|² of the centre of mass on its parabola (horizontal part too) plus
     // the rotation's ½·ω·L, and with m·g·z the total the flight conserves (to the rotation's 1e-7).
-    const Vec3 v = p.velocity - Vec3(0, 0, kG * s.t);
+    const Vec3 v = p.velocity - Vec3(0, 0, test::kGravitySI * s.t);
     const double kinetic = 0.5 * box.mass.mass * v.squaredNorm() + 0.5 * s.omega.dot(momentum(s));
     EXPECT_NEAR(s.kinetic_energy, kinetic, 1e-7 * kinetic) << "t " << s.t;
-    EXPECT_NEAR(s.potential_energy, box.mass.mass * kG * s.com.z(), 1e-12 * box.mass.mass * kG * c0.z());
+    EXPECT_NEAR(s.potential_energy, box.mass.mass * test::kGravitySI * s.com.z(),
+                1e-12 * box.mass.mass * test::kGravitySI * c0.z());
   }
   EXPECT_EQ(r.status, Status::rest);
   EXPECT_LE(r.max_penetration, 1e-9 * box.length);
@@ -241,8 +243,9 @@ TEST(Rebound, RandomTossesNeverCreateEnergyNorSinkBelowTheWall) {
   long impacts = 0;
   for (const std::string& spec : shapes) {
     const Particle particle = load_particle(spec, 1000.0);
-    const double scale = particle.mass.mass * kG * particle.length;
-    const double speed = std::sqrt(kG * particle.length), rate = std::sqrt(kG / particle.length);
+    const double scale = particle.mass.mass * test::kGravitySI * particle.length;
+    const double speed = std::sqrt(test::kGravitySI * particle.length),
+                 rate = std::sqrt(test::kGravitySI / particle.length);
     for (int i = 0; i < kTossesPerShape; ++i) {
       SettleParams p;
       p.damping = 0.1 * unit(rng) * particle.mass.mass * particle.length * particle.length * rate;
@@ -269,7 +272,7 @@ TEST(Rebound, RandomTossesNeverCreateEnergyNorSinkBelowTheWall) {
       EXPECT_LE(r.energy_end, r.energy_start + 1e-12 * scale) << what;
       // (A run still moving after 200·sqrt(L/g) of frictional contact is handed to the paper's phase, whose
       // support switches are out of the ledger.)
-      if (std::isfinite(p.friction) && r.time < 200 * std::sqrt(particle.length / kG)) {
+      if (std::isfinite(p.friction) && r.time < 200 * std::sqrt(particle.length / test::kGravitySI)) {
         EXPECT_NEAR(r.energy_start - r.energy_end, losses + r.friction_work + r.damping_work, 1e-6 * scale)
             << what;
       }
@@ -294,7 +297,7 @@ TEST(Rebound, TheHandOverKeepsTheAngularMomentumAboutTheStruckVertex) {
   ASSERT_EQ(r.impacts[0].points, 1);
   ASSERT_FALSE(r.impacts[0].rebound);
   const double t = r.impacts[0].t;
-  const Vec3 v = p.velocity - Vec3(0, 0, kG * t);
+  const Vec3 v = p.velocity - Vec3(0, 0, test::kGravitySI * t);
   const Sample* after = nullptr;
   for (const Sample& s : samples)
     if (s.t == t && s.contact != ContactType::free_fall && s.contact != ContactType::flight) after = &s;

@@ -12,15 +12,14 @@
 
 #include "../support/equilibrium_oracle.hpp"
 #include "../support/pendulum.hpp"
+#include "gravity.hpp"
 
 namespace repose {
 namespace {
 
-constexpr double kG = 981.0;
-
 SettleParams cgs_params(double damping = 0, Integrator integrator = SettleParams{}.integrator) {
   SettleParams p;
-  p.gravity = kG;
+  p.gravity = test::kGravityCGS;
   p.damping = damping;
   p.integrator = integrator;
   return p;
@@ -81,9 +80,9 @@ double rigid_pivot_time(const Particle& cyl, double r, double h, double theta0, 
     if (u == 0) {
       // limit u → 0: 2u / sqrt(k·|z'(θ0)|·u²) = 2 / sqrt(k·|z'(θ0)|)
       const double dz = std::abs(r * std::cos(theta0) - h / 2 * std::sin(theta0));
-      return 2.0 / std::sqrt(2 * m * kG * dz / inertia);
+      return 2.0 / std::sqrt(2 * m * test::kGravityCGS * dz / inertia);
     }
-    return 2 * u / std::sqrt(2 * m * kG * drop(-sign * u * u) / inertia);
+    return 2 * u / std::sqrt(2 * m * test::kGravityCGS * drop(-sign * u * u) / inertia);
   };
   const int n = 200000;
   const double du = umax / n;
@@ -139,7 +138,7 @@ TEST_P(Cylinder, TimeErrorShrinksWithTheStepOrTheTolerance) {
     for (double tol : {1e-5, 1e-7, 1e-9}) {
       SettleParams p = cgs_params();
       p.tolerance = tol;
-      p.dt = 10 * std::sqrt(cyl.length / kG);
+      p.dt = 10 * std::sqrt(cyl.length / test::kGravityCGS);
       const SettleResult res = settle(cyl, p, tilt(theta0));
       ASSERT_EQ(res.status, Status::rest);
       const double error = std::abs(res.time - exact) / exact;
@@ -155,7 +154,7 @@ TEST_P(Cylinder, TimeErrorShrinksWithTheStepOrTheTolerance) {
   // The trapezoidal rule is second order: halving the time step (SettleParams::dt, here given explicitly)
   // divides the error of the time to rest against the quadrature by 4. Measured ratios: 3.979, 3.991; the
   // band 3.5-4.5 would also fail a first-order scheme (2) or a step that is ignored (1).
-  const double tau = std::sqrt(cyl.length / kG);
+  const double tau = std::sqrt(cyl.length / test::kGravityCGS);
   double previous = 0;
   for (double dt : {4e-3 * tau, 2e-3 * tau, 1e-3 * tau}) {
     SettleParams p = cgs_params();
@@ -193,8 +192,8 @@ TEST_P(Cylinder, JustAboveCriticalAngleRestsOnItsSide) {
   // axis), I = m·(r²(1 + 2cos²(π/n))/6 + r²) for the n-gon prism.
   const double pivot = rigid_pivot_time(cyl, r, h, theta0, std::numbers::pi / 2);
   const double inertia = pendulum::ngon_prism_axial_inertia_per_mass(r, 64) + r * r;  // per unit mass
-  const double tip =
-      pendulum::undamped_tip_time(inertia, kG * r, std::asin(1e-8 * cyl.length / r), std::numbers::pi / 64);
+  const double tip = pendulum::undamped_tip_time(inertia, test::kGravityCGS * r,
+                                                 std::asin(1e-8 * cyl.length / r), std::numbers::pi / 64);
   // Measured relative error: paper 1.6e-7, adaptive 7.5e-8; tolerances 1e-6 and 2e-7.
   const double exact = pivot + tip;
   std::cout << "side: time " << b.result.time << ", quadratures " << pivot << " + " << tip
@@ -358,7 +357,7 @@ TEST(FreeFall, FlatDropTouchesAtTheBallisticTimeAndRests) {
   const Trial r = run(cube, p, Quat::Identity());
   expect_sound(cube, r);
   ASSERT_EQ(r.result.status, Status::rest);
-  EXPECT_NEAR(r.result.time, std::sqrt(2 * 2.5 / kG), 1e-12);
+  EXPECT_NEAR(r.result.time, std::sqrt(2 * 2.5 / test::kGravityCGS), 1e-12);
   EXPECT_NEAR(r.result.com.z(), 0.5, 1e-12);
   ASSERT_EQ(r.result.phases.front().contact, ContactType::free_fall);
 }
