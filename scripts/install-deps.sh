@@ -43,7 +43,7 @@ for g in "${names[@]}"; do
     echo "install-deps.sh: unknown group '$g' (groups: ${order[*]})" >&2
     exit 2
   fi
-  read -r -a list <<<"${group[$g]}"
+  read -r -d '' -a list <<<"${group[$g]}" || true  # every line of the group, not only its first
   packages+=("${list[@]}")
 done
 
