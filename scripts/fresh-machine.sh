@@ -56,6 +56,9 @@ if [ -f /etc/apt/sources.list.d/debian.sources ]; then
   cp /etc/apt/sources.list.d/debian.sources "$dir/etc/apt/sources.list.d/"
 fi
 cp /etc/resolv.conf "$dir/etc/resolv.conf"
+# debootstrap writes no /etc/hosts; Debian's installer writes this one (the browser test reaches ChromeDriver
+# at localhost).
+printf '127.0.0.1\tlocalhost\n::1\t\tlocalhost ip6-localhost ip6-loopback\n' >"$dir/etc/hosts"
 mount -t proc proc "$dir/proc"
 mount -t sysfs sys "$dir/sys"
 mount --bind /dev "$dir/dev"

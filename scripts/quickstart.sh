@@ -8,12 +8,16 @@
 #   the Python package `repose` -> where Debian's /usr/bin/python3 finds it (--component python)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+elapsed() { printf '[%d:%02d] %s\n' $((SECONDS / 60)) $((SECONDS % 60)) "$1"; }
 scripts/install-deps.sh core python plots
+elapsed "packages installed"
 cmake --preset release >/dev/null
 cmake --build --preset release -j"$(nproc)" --target quickstart  # repose_cli and _repose (CMakeLists.txt)
 cmake --install build/release --component cli >/dev/null
 cmake --install build/release --component python >/dev/null
+elapsed "repose and the Python package built and installed"
 build/release/apps/repose/repose paper --out results/paper
+elapsed "the paper's cases reproduced"
 echo "Look at: results/paper/report.html (open it in a browser: the runs in 3-D, the comparison, the figures),"
 echo "         results/paper/report.md (comparison with the paper), results/paper/<case>/*.png (figures),"
 echo "         results/paper/<case>/vtk/settling.pvd (open in ParaView), results/paper/<case>/timeseries.csv"
