@@ -16,8 +16,8 @@ declare -A group=(
   # python3-fonttools' dependency "python3-scipy | python3-munkres" (matplotlib needs fonttools) without
   # SciPy's 62 MB, which the figures never use: 12 s less on a fresh machine.
   [plots]="python3-matplotlib python3-munkres"
-  # The test suites: GoogleTest, pytest, SciPy as the independent ODE reference, git for the mutation script.
-  [tests]="libgtest-dev libgmock-dev python3-pytest python3-scipy git"
+  # The test suites: GoogleTest, pytest, SciPy as the independent ODE reference.
+  [tests]="libgtest-dev libgmock-dev python3-pytest python3-scipy"
   # The MPI runner (mpirun -np K repose poses) and its tests.
   [mpi]="libopenmpi-dev openmpi-bin"
   # The Fortran module over the C API and its example.
