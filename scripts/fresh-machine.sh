@@ -2,10 +2,11 @@
 # Times the README's two quick-start commands as a new user meets them: on a fresh Debian 12 root
 # (debootstrap --variant=minbase bookworm: nothing installed but Debian's minimal base, no compiler, no git),
 # into which this checkout's HEAD is cloned. Needs root, debootstrap (installed if missing) and Debian's archive.
-#   scripts/fresh-machine.sh [--ci] [--keep] [DIR]
+#   scripts/fresh-machine.sh [--ci | --quickstart-only] [--keep] [DIR]
 #     DIR     where the root is made (default /var/tmp/repose-fresh); emptied first
 #     --ci    also run .ci/run in the same root after the two commands (its time is then the sanitizer
 #             build, its tests and the fuzzers on top of scripts/test.sh's build, which it reuses)
+#     --quickstart-only   time only the first command
 #     --keep  leave the root in place afterwards (default: removed)
 # Prints each command's exit code and wall time, and checks that `repose` is on the PATH and `import repose`
 # works from outside the checkout. Logs: DIR.log/. The pristine debootstrap root is cached in
@@ -14,12 +15,14 @@ set -euo pipefail
 repo="$(cd "$(dirname "$0")/.." && pwd)"
 ci=0
 keep=0
+quickstart_only=0
 dir=/var/tmp/repose-fresh
 for arg in "$@"; do
   case "$arg" in
     --ci) ci=1 ;;
     --keep) keep=1 ;;
-    -*) echo "fresh-machine.sh: unknown option '$arg' (options: --ci, --keep)" >&2; exit 2 ;;
+    --quickstart-only) quickstart_only=1 ;;
+    -*) echo "fresh-machine.sh: unknown option '$arg' (options: --ci, --quickstart-only, --keep)" >&2; exit 2 ;;
     *) dir="$arg" ;;
   esac
 done
@@ -96,6 +99,7 @@ else
   echo "  FAILED: repose on the PATH / import repose / the paper's report ($logs/check.log)"
   status=1
 fi
+[ "$quickstart_only" -eq 0 ] || exit "$status"
 timed test scripts/test.sh || status=1
 grep -E "tests passed|tests failed" "$logs/test.log" | sed 's/^/  /' || true
 if [ "$ci" -eq 1 ]; then

@@ -9,13 +9,23 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 elapsed() { printf '[%d:%02d] %s\n' $((SECONDS / 60)) $((SECONDS % 60)) "$1"; }
-scripts/install-deps.sh core python plots
+scripts/install-deps.sh core python
 elapsed "packages installed"
+# matplotlib is needed only by the paper's figures, at the end: it installs while the build runs.
+mkdir -p build
+scripts/install-deps.sh plots >build/install-plots.log 2>&1 &
+plots=$!
 cmake --preset release >/dev/null
 cmake --build --preset release -j"$(nproc)" --target quickstart  # repose_cli and _repose (CMakeLists.txt)
 cmake --install build/release --component cli >/dev/null
 cmake --install build/release --component python >/dev/null
 elapsed "repose and the Python package built and installed"
+if ! wait "$plots"; then
+  cat build/install-plots.log >&2
+  echo "quickstart.sh: installing matplotlib (scripts/install-deps.sh plots) failed; log above" >&2
+  exit 1
+fi
+elapsed "matplotlib installed"
 build/release/apps/repose/repose paper --out results/paper
 elapsed "the paper's cases reproduced"
 echo "Look at: results/paper/report.html (open it in a browser: the runs in 3-D, the comparison, the figures),"
