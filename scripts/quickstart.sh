@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Quick start: install the Debian packages the main job needs (groups core, python and plots of
-# scripts/install-deps.sh, not the test tools, which scripts/test.sh installs), build what the main job needs (release: the `repose` tool and the
-# Python module, not the tests or benchmarks, which scripts/test.sh builds), install both, and run the main
+# scripts/install-deps.sh, the last while the build runs; not the test tools, which scripts/test.sh installs),
+# build what the main job needs (release: the `repose` tool and the Python module, not the tests or
+# benchmarks, which scripts/test.sh builds), install both, and run the main
 # job: `repose paper`, the paper's four cases (six runs) with figures, ParaView series and a comparison table,
 # in results/paper/.
 #   the tool `repose`           -> /usr/local/bin/repose, on the PATH (cmake --install ... --component cli)
