@@ -27,6 +27,11 @@ struct ContactForces {
   bool converged = true;
   int painleve = 0;                ///< sliding points with no consistent normal force (Painlevé's paradox)
   std::vector<char> inconsistent;  ///< which points those are (1: Painlevé's case at that point)
+  /// Lemke's pyramid friction kept at points at rest (ContactSolution::pyramid): a fallback, counted.
+  bool pyramid = false;
+  /// No solution reached (Gauss–Seidel diverged and Lemke's method ended on a ray): the forces are zero and
+  /// the run counts it. Painlevé's case is decided by the problem (`inconsistent`), not by this.
+  bool solved = true;
 };
 
 struct ContactBody {

@@ -81,7 +81,7 @@ EdgeCase random_edge(std::mt19937_64& rng) {
 // and reactions of the order of the scale, and the slip direction is taken from values down to the
 // tolerance itself: 1e-9 leaves room for that without admitting a pyramid's answer (its friction up to 3.4 %
 // off the cone, or off the slip's direction).
-constexpr double kTol = 1e-9;
+constexpr double kProblemTolerance = 1e-9;
 
 TEST(ContactProblem, EdgeAtTheLimitOfItsConeMeetsCoulombsLawExactly) {
   std::mt19937_64 rng(34);
@@ -92,9 +92,10 @@ TEST(ContactProblem, EdgeAtTheLimitOfItsConeMeetsCoulombsLawExactly) {
     const ContactSolution s = solve_contacts(c.problem, c.lin, c.ang, unilateral);
     ASSERT_TRUE(s.solved) << "trial " << trial;
     EXPECT_TRUE(s.converged) << "trial " << trial;
-    EXPECT_EQ(coulomb_violation(c.problem, c.lin, c.ang, s, kTol), "") << "trial " << trial;
+    EXPECT_EQ(coulomb_violation(c.problem, c.lin, c.ang, s, kProblemTolerance), "") << "trial " << trial;
     if (s.reactions[0].z() > 0 && s.reactions[1].z() > 0) ++pressed;
-    if (point_value(c.problem, 0, s.lin, s.ang).head<2>().norm() > kTol * c.problem.scale) ++slipping;
+    if (point_value(c.problem, 0, s.lin, s.ang).head<2>().norm() > kProblemTolerance * c.problem.scale)
+      ++slipping;
   }
   // The cases are the hard ones: both points pressed, and many of them slipping.
   EXPECT_GT(pressed, 700) << slipping;
@@ -122,7 +123,7 @@ TEST(ContactProblem, NewtonsMethodConvergesFromNearASolution) {
       s.lin += s.reactions[i] / c.problem.mass;
       s.ang += c.problem.inverse_inertia * c.problem.arms[i].cross(s.reactions[i]);
     }
-    EXPECT_EQ(coulomb_violation(c.problem, c.lin, c.ang, s, kTol), "") << "trial " << trial;
+    EXPECT_EQ(coulomb_violation(c.problem, c.lin, c.ang, s, kProblemTolerance), "") << "trial " << trial;
   }
 }
 
