@@ -203,6 +203,24 @@ typedef struct repose_result {
 
 int repose_settler_result(const repose_settler* settler, repose_result* result);
 
+/* Finite friction: the frictional contact phase's energy ledger beyond the impacts' and every fallback,
+ * counted by kind (the C++ FrictionalAccount; `repose settle --json`'s "energy", "fallbacks", "captures").
+ * Energies in mass*length^2/time^2. With friction infinite every field is zero. */
+typedef struct repose_friction_account {
+  double friction_work, damping_work; /* taken by friction and by the damping moment */
+  double normal_work;                 /* done on the body by the normal forces between events (signed) */
+  double stopping_losses;             /* taken by the stopping impulses at points at rest */
+  double repositioning;               /* potential energy of moves that are not motion (drift, tip-offs) */
+  double rest_losses;                 /* kinetic energy left when the body was declared still */
+  double paper_phase_losses;          /* taken by the paper's phase after a hand-over */
+  double impact_losses;               /* taken by every impact (captures and Painleve's included) */
+  int handovers_stalled, handovers_timed_out, holds, bounded_rounds; /* fallbacks */
+  long long pyramid_forces, unsolved_forces, unresolved_forces;      /* fallbacks (force evaluations) */
+  int zeno_captures, painleve, tip_offs;                             /* captures */
+} repose_friction_account;
+
+int repose_settler_friction_account(const repose_settler* settler, repose_friction_account* account);
+
 /* Runs a settle to the end: repose_settler_new, _run, _result in one call. */
 int repose_settle(const repose_particle* particle, const repose_params* params, const repose_state* start,
                   double floor_height, repose_result* result);

@@ -217,6 +217,38 @@ int repose_settler_result(const repose_settler* settler, repose_result* result) 
   });
 }
 
+int repose_settler_friction_account(const repose_settler* settler, repose_friction_account* account) {
+  return guarded("repose_settler_friction_account", REPOSE_ERROR_INTERNAL, [&] {
+    const repose_settler& s = valid(settler);
+    require(account, "account");
+    const repose::SettleResult r = s.settler->result();
+    repose_friction_account out{};
+    out.friction_work = r.friction_work;
+    out.damping_work = r.damping_work;
+    for (const repose::ImpactRecord& i : r.impacts) out.impact_losses += i.energy_before - i.energy_after;
+    out.painleve = r.painleve;
+    if (const auto& f = r.frictional) {
+      out.normal_work = f->normal_work;
+      out.stopping_losses = f->stopping_losses;
+      out.repositioning = f->repositioning;
+      out.rest_losses = f->rest_losses;
+      out.paper_phase_losses = f->paper_phase_losses;
+      out.handovers_stalled = f->handovers_stalled;
+      out.handovers_timed_out = f->handovers_timed_out;
+      out.holds = f->holds;
+      out.bounded_rounds = f->bounded_rounds;
+      out.pyramid_forces = f->pyramid_forces;
+      out.unsolved_forces = f->unsolved_forces;
+      out.unresolved_forces = f->unresolved_forces;
+      out.zeno_captures = f->zeno_captures;
+      out.tip_offs = f->tip_offs;
+    } else {
+      out = repose_friction_account{};  // friction infinite: every field zero, as documented
+    }
+    *account = out;
+  });
+}
+
 int repose_settle(const repose_particle* particle, const repose_params* params, const repose_state* start,
                   double floor_height, repose_result* result) {
   repose_settler* settler = nullptr;

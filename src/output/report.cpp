@@ -105,6 +105,28 @@ std::string settle_summary_json(const Particle& particle, const SettleParams& pa
                  {"friction_work", r.friction_work},
                  {"damping_work", r.damping_work},
                  {"impact_losses", impact_losses}};
+  if (const auto& f = r.frictional) {
+    // Finite friction: the whole ledger (its terms close ΔE to the integrator's tolerance, "residual") and
+    // every fallback counted by kind (friction infinite prints neither, and its output is unchanged).
+    nlohmann::json& e = j["energy"];
+    e["change"] = r.energy_end - r.energy_start;
+    e["normal_work"] = f->normal_work;
+    e["stopping_losses"] = f->stopping_losses;
+    e["repositioning"] = f->repositioning;
+    e["rest_losses"] = f->rest_losses;
+    e["paper_phase_losses"] = f->paper_phase_losses;
+    e["residual"] = r.energy_end - r.energy_start + impact_losses + r.friction_work + r.damping_work -
+                    f->normal_work + f->stopping_losses - f->repositioning + f->rest_losses +
+                    f->paper_phase_losses;
+    j["fallbacks"] = {{"handovers_stalled", f->handovers_stalled},
+                      {"handovers_timed_out", f->handovers_timed_out},
+                      {"holds", f->holds},
+                      {"bounded_rounds", f->bounded_rounds},
+                      {"pyramid_forces", f->pyramid_forces},
+                      {"unsolved_forces", f->unsolved_forces},
+                      {"unresolved_forces", f->unresolved_forces}};
+    j["captures"] = {{"zeno", f->zeno_captures}, {"painleve", r.painleve}, {"tip_offs", f->tip_offs}};
+  }
   j["sliding_distance"] = r.sliding_distance;
   j["painleve"] = r.painleve;
   j["unconverged_steps"] = r.unconverged_steps;

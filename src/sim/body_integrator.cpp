@@ -47,6 +47,7 @@ struct Equations {
     dyds[13] = -r.friction_power * t / units.energy;
     dyds[14] = -r.damping_power * t / units.energy;
     dyds[15] = r.slip_rate * t / units.length;
+    dyds[16] = r.normal_power * t / units.energy;
   }
 };
 
@@ -95,6 +96,7 @@ void BodyIntegrator::start(const BodyState& state, const BodyLedger& ledger, dou
   y[13] = ledger.friction_work / u.energy;
   y[14] = ledger.damping_work / u.energy;
   y[15] = ledger.sliding_distance / u.length;
+  y[16] = ledger.normal_work / u.energy;
   impl_->dense.initialize(y, t / u.time, first_step / u.time);
 }
 
@@ -114,7 +116,7 @@ BodyLedger BodyIntegrator::ledger_at(double t) const {
   State y;
   const Scales& u = impl_->equations.units;
   impl_->dense.calc_state(t / u.time, y);
-  return {y[13] * u.energy, y[14] * u.energy, y[15] * u.length};
+  return {y[13] * u.energy, y[14] * u.energy, y[15] * u.length, y[16] * u.energy};
 }
 
 double BodyIntegrator::proposed_step() const {

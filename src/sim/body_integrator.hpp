@@ -30,6 +30,7 @@ struct BodyRates {
   Vec3 angular_acceleration = Vec3::Zero();
   double friction_power = 0;  ///< the contact forces' power (≤ 0)
   double damping_power = 0;   ///< the damping moment's (≤ 0)
+  double normal_power = 0;    ///< the normal forces' (their points' drift across the wall: ~0)
   double slip_rate = 0;       ///< the contact's sliding speed (the ledger's sliding distance grows by it)
 };
 
@@ -38,6 +39,7 @@ struct BodyLedger {
   double friction_work = 0;
   double damping_work = 0;
   double sliding_distance = 0;
+  double normal_work = 0;  ///< done on the body (signed)
 };
 
 class BodyIntegrator {
@@ -61,7 +63,7 @@ class BodyIntegrator {
   /// The size the error control proposes for the next step (time).
   double proposed_step() const;
 
-  using State = std::array<double, 16>;  ///< x/L, v/(L/T), q (x, y, z, w), ω·T, the ledger scaled
+  using State = std::array<double, 17>;  ///< x/L, v/(L/T), q (x, y, z, w), ω·T, the ledger scaled
 
  private:
   struct Impl;

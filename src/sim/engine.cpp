@@ -66,6 +66,11 @@ bool Engine::step() {
     }
   } else if (auto* sliding = std::get_if<FrictionalContact>(&phase_)) {
     if (run_.t - sliding->start_time() >= run_.tol.frictional_time || sliding->stalled()) {
+      // A fallback, counted with its cause; what the paper's phase then takes is in the ledger.
+      FrictionalAccount& account = run_.record.account;
+      ++(sliding->stalled() ? account.handovers_stalled : account.handovers_timed_out);
+      if (std::isnan(run_.record.handover_energy))
+        run_.record.handover_energy = sliding->kinetic_energy() + run_.potential_energy();
       const Vec3 velocity = sliding->velocity(), omega = sliding->omega();
       start_contact(velocity, omega, true);
     } else if (auto rest = sliding->step()) {
@@ -180,6 +185,11 @@ SettleResult Engine::result() const {
   r.damping_work = rec.damping_work;
   r.sliding_distance = rec.sliding_distance;
   r.painleve = rec.painleve;
+  if (frictional()) {
+    r.frictional = rec.account;
+    if (!std::isnan(rec.handover_energy))
+      r.frictional->paper_phase_losses = rec.handover_energy - r.energy_end;
+  }
   return r;
 }
 

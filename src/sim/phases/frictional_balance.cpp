@@ -93,10 +93,13 @@ void FrictionalContact::turn_past_line(const Vec3& pivot, const Vec2& outward) {
     const double limit = std::acos(std::clamp(-pivot.z() / reach, -1.0, 1.0)) - std::atan2(x, z);
     if (side * alpha > limit) alpha = side * std::max(limit, 0.0);
   }
+  run.record.account.rest_losses += kinetic_energy();
+  const double height_before = run.com.z();
   const Vec3 axis = Vec3::UnitZ().cross(Vec3(outward.x(), outward.y(), 0));
   const Quat turn(Eigen::AngleAxisd(alpha, axis));
   run.q = (turn * run.q).normalized();
   run.com = pivot + turn * (run.com - pivot);
+  run.record.account.repositioning += run.body.mass * run.params.gravity * (run.com.z() - height_before);
   velocity_ = omega_ = Vec3::Zero();
 }
 

@@ -35,7 +35,8 @@ FrictionalContact::FrictionalContact(Run& run, const Motion& motion)
                   run.tol.flight_max_step),
       velocity_(motion.velocity),
       omega_(motion.omega),
-      ledger_{run.record.friction_work, run.record.damping_work, run.record.sliding_distance},
+      ledger_{run.record.friction_work, run.record.damping_work, run.record.sliding_distance,
+              run.record.account.normal_work},
       start_time_(run.t) {}
 
 double FrictionalContact::kinetic_energy() const {
@@ -109,6 +110,7 @@ void FrictionalContact::move_to(double t) {
   run_.record.friction_work = ledger_.friction_work;
   run_.record.damping_work = ledger_.damping_work;
   run_.record.sliding_distance = ledger_.sliding_distance;
+  run_.record.account.normal_work = ledger_.normal_work;
 }
 
 // The points on the wall: within the band and not leaving it; each slides along its slip or is at rest.
@@ -155,22 +157,24 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
       lowest_arm = arm;
     }
   }
-  if (lowest < 0) {
-    run.record.note_depth(-lowest);
+  if (lowest < 0 || (lowest <= run.tol.frictional_band &&
+                     std::abs((velocity_ + omega_.cross(lowest_arm)).z()) <= run.tol.speed)) {
+    if (lowest < 0) run.record.note_depth(-lowest);
     run.com.z() -= lowest;
-  } else if (lowest <= run.tol.frictional_band &&
-             std::abs((velocity_ + omega_.cross(lowest_arm)).z()) <= run.tol.speed) {
-    run.com.z() -= lowest;
+    run.record.account.repositioning -= run.body.mass * run.params.gravity * lowest;  // in the ledger
   }
+  if (hold_) ++run.record.account.holds;
   bool settled = false;
   for (int round = 0; round < kSegmentRounds && !settled; ++round) {
     classify();
     if (resolve_impacts()) continue;
     forces_ = forces_at({run.com, velocity_, run.q, omega_});
+    count_fallbacks(forces_);
     if (capture_returning_points()) continue;
     settled = !resolve_painleve();
   }
   if (!settled) {  // the rounds' bound: the points as they are now
+    ++run.record.account.bounded_rounds;
     classify();
     forces_ = forces_at({run.com, velocity_, run.q, omega_});
   }
@@ -204,18 +208,23 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
       // point of its swing with its centre of mass over the edge): the paper's rule for an edge balance tips
       // it towards that face.
       const int face = face_under_com(run, support);
+      const double potential_before = run.potential_energy();  // a flush rest lays the face down
       if (face >= 0 && !face_on_wall(face)) {
         if (tip_offs_ < kTipOffs && band.size() >= 2 && tip_onto_face(band, face)) {
           ++tip_offs_;
+          ++run.record.account.tip_offs;
           return begin_segment();
         }
       } else if (auto rest = flush_rest(run, support)) {
+        run.record.account.repositioning += run.potential_energy() - potential_before;
+        run.record.account.rest_losses += kinetic_energy();
         velocity_ = omega_ = Vec3::Zero();
         return rest;
       } else if (tip_offs_ < kTipOffs && tip_off_balance(support)) {
         // Still, on a face the paper's test calls unstable: balanced on its boundary to round-off (a designed
         // die's face whose margin is 0 to 1e-12·L). Left by the paper's rule for an edge balance.
         ++tip_offs_;
+        ++run.record.account.tip_offs;
         return begin_segment();
       }
     }
@@ -253,6 +262,25 @@ ContactForces FrictionalContact::forces_at(const BodyState& s, const std::vector
                         warm && warm->size() == points.size() ? warm : nullptr);
 }
 
+void FrictionalContact::count_fallbacks(const ContactForces& f) const {
+  // run_ is the run's, not this phase's: counted from the const rates too.
+  FrictionalAccount& account = run_.record.account;
+  account.pyramid_forces += f.pyramid;
+  account.unsolved_forces += !f.solved;
+  account.unresolved_forces += f.solved && !f.converged;
+}
+
+std::vector<FrictionalContact::PointForce> FrictionalContact::point_forces() const {
+  std::vector<PointForce> out;
+  if (!started_ || active_.empty()) return out;
+  const ContactForces f = forces_at({run_.com, velocity_, run_.q, omega_});
+  for (std::size_t i = 0; i < active_.size(); ++i) {
+    const Vec3 arm = run_.q * run_.particle.hull.vertices[static_cast<std::size_t>(active_[i])];
+    out.push_back({run_.com + arm, velocity_ + omega_.cross(arm), f.forces[i]});
+  }
+  return out;
+}
+
 BodyRates FrictionalContact::rates(const BodyState& s) const {
   BodyRates r;
   if (active_.empty()) {
@@ -263,6 +291,7 @@ BodyRates FrictionalContact::rates(const BodyState& s) const {
         inertia.inverse() * (-run_.params.damping * s.omega - s.omega.cross(inertia * s.omega));
   } else {
     const ContactForces f = forces_at(s);
+    count_fallbacks(f);
     r.acceleration = f.acceleration;
     r.angular_acceleration = f.angular_acceleration;
     double normal = 0, weighted_slip = 0;
@@ -270,6 +299,7 @@ BodyRates FrictionalContact::rates(const BodyState& s) const {
       const Vec3 arm = s.q * run_.particle.hull.vertices[static_cast<std::size_t>(active_[i])];
       const Vec3 u = s.velocity + s.omega.cross(arm);
       r.friction_power += f.forces[i].head<2>().dot(u.head<2>());
+      r.normal_power += f.forces[i].z() * u.z();
       // A sliding point's slip along the direction it slides in: past its stop (an event) the motion's
       // extension slides on backwards, and the slip rate stays smooth there (negative) for the dense output.
       const Vec2 ut = u.head<2>();

@@ -46,6 +46,12 @@ class FrictionalContact {
   int sliding() const;
   /// The contact type by the points on the wall (flight when none).
   ContactType contact_type() const;
+  /// Each point of the current segment with its velocity and the force on it now, by the segment's rules
+  /// (world frame): for white-box tests of the forces along a run.
+  struct PointForce {
+    Vec3 point, velocity, force;
+  };
+  std::vector<PointForce> point_forces() const;
 
  private:
   // The start of a segment at run.t: the pose projected onto the wall, the points on it classified, impacts
@@ -62,6 +68,7 @@ class FrictionalContact {
   void turn_past_line(const Vec3& pivot, const Vec2& outward);
   Eigen::VectorXd stopping_impulses(const std::vector<Vec3>& arms) const;
   BodyRates rates(const BodyState& s) const;
+  void count_fallbacks(const ContactForces& f) const;
   ContactForces forces_at(const BodyState& s) const;  // at the segment's points, by their rules
   ContactForces forces_at(const BodyState& s, const std::vector<int>& points,
                           std::vector<PointCondition> conditions,

@@ -57,6 +57,7 @@ void FrictionalContact::hold_resting_points() {
     if (conditions_[i].rule == PointRule::unilateral)
       arms.push_back(run_.q * run_.particle.hull.vertices[static_cast<std::size_t>(active_[i])]);
   if (arms.empty()) return;
+  const double before = kinetic_energy();
   const Eigen::VectorXd P = stopping_impulses(arms);
   const Mat3 R = run_.q.toRotationMatrix();
   const Mat3 inverse_inertia = R * run_.body.inertia.inverse() * R.transpose();
@@ -65,6 +66,7 @@ void FrictionalContact::hold_resting_points() {
     velocity_ += p / run_.body.mass;
     omega_ += inverse_inertia * arms[i].cross(p);
   }
+  run_.record.account.stopping_losses += before - kinetic_energy();
 }
 
 // Zeno's accumulation of impacts (a block rocking between two edges of its face, a polyhedron rolling across
@@ -91,6 +93,7 @@ bool FrictionalContact::capture_returning_points() {
     if (u.z() > fastest) fastest = u.z(), fastest_point = r;
   }
   if (arms.empty()) return false;
+  ++run.record.account.zeno_captures;
   for (int k : active_) arms.push_back(arm_of(k));
   const Mat3 R = run.q.toRotationMatrix();
   const Mat3 inertia = R * run.body.inertia * R.transpose();
