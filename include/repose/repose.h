@@ -209,14 +209,16 @@ int repose_settler_result(const repose_settler* settler, repose_result* result);
 typedef struct repose_friction_account {
   double friction_work, damping_work; /* taken by friction and by the damping moment */
   double normal_work;                 /* done on the body by the normal forces between events (signed) */
+  double drift_corrections;           /* taken by undoing the velocity drift of points held at rest */
   double stopping_losses;             /* taken by the stopping impulses at points at rest */
   double repositioning;               /* potential energy of moves that are not motion (drift, tip-offs) */
   double rest_losses;                 /* kinetic energy left when the body was declared still */
   double paper_phase_losses;          /* taken by the paper's phase after a hand-over */
+  double frictionless_motion;         /* mu = 0: translation and vertical spin kept at rest */
   double impact_losses;               /* taken by every impact (captures and Painleve's included) */
-  int handovers_stalled, handovers_timed_out, holds, bounded_rounds; /* fallbacks */
-  long long pyramid_forces, unsolved_forces, unresolved_forces;      /* fallbacks (force evaluations) */
-  int zeno_captures, painleve, tip_offs;                             /* captures */
+  int handovers_stalled, handovers_timed_out, bounded_rounds;   /* fallbacks */
+  long long pyramid_forces, unsolved_forces, unresolved_forces; /* fallbacks (force evaluations) */
+  int zeno_captures, painleve, tip_offs;                        /* captures */
 } repose_friction_account;
 
 int repose_settler_friction_account(const repose_settler* settler, repose_friction_account* account);

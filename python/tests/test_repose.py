@@ -318,7 +318,7 @@ def test_a_toss_with_friction_reports_its_whole_ledger_and_every_fallback():
     assert e.change == pytest.approx(e.end - e.start, abs=1e-12 * mgl)
     assert abs(e.residual) < 1e-6 * mgl
     assert e.impact_losses > 1e-3 * mgl and e.friction_work >= 0
-    for kind in ("handovers_stalled", "handovers_timed_out", "holds", "bounded_rounds", "pyramid_forces",
+    for kind in ("handovers_stalled", "handovers_timed_out", "bounded_rounds", "pyramid_forces",
                  "unsolved_forces", "unresolved_forces"):
         assert r.fallbacks[kind] == 0, kind
     assert set(r.captures._data) == {"zeno", "painleve", "tip_offs"}

@@ -230,12 +230,13 @@ int repose_settler_friction_account(const repose_settler* settler, repose_fricti
     if (const auto& f = r.frictional) {
       out.normal_work = f->normal_work;
       out.stopping_losses = f->stopping_losses;
+      out.drift_corrections = f->drift_corrections;
       out.repositioning = f->repositioning;
       out.rest_losses = f->rest_losses;
       out.paper_phase_losses = f->paper_phase_losses;
+      out.frictionless_motion = f->frictionless_motion;
       out.handovers_stalled = f->handovers_stalled;
       out.handovers_timed_out = f->handovers_timed_out;
-      out.holds = f->holds;
       out.bounded_rounds = f->bounded_rounds;
       out.pyramid_forces = f->pyramid_forces;
       out.unsolved_forces = f->unsolved_forces;

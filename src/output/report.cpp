@@ -112,19 +112,18 @@ std::string settle_summary_json(const Particle& particle, const SettleParams& pa
     e["change"] = r.energy_end - r.energy_start;
     e["normal_work"] = f->normal_work;
     e["stopping_losses"] = f->stopping_losses;
+    e["drift_corrections"] = f->drift_corrections;
     e["repositioning"] = f->repositioning;
     e["rest_losses"] = f->rest_losses;
     e["paper_phase_losses"] = f->paper_phase_losses;
+    e["frictionless_motion"] = f->frictionless_motion;
     e["residual"] = r.energy_end - r.energy_start + impact_losses + r.friction_work + r.damping_work -
-                    f->normal_work + f->stopping_losses - f->repositioning + f->rest_losses +
-                    f->paper_phase_losses;
-    j["fallbacks"] = {{"handovers_stalled", f->handovers_stalled},
-                      {"handovers_timed_out", f->handovers_timed_out},
-                      {"holds", f->holds},
-                      {"bounded_rounds", f->bounded_rounds},
-                      {"pyramid_forces", f->pyramid_forces},
-                      {"unsolved_forces", f->unsolved_forces},
-                      {"unresolved_forces", f->unresolved_forces}};
+                    f->normal_work + f->stopping_losses + f->drift_corrections - f->repositioning +
+                    f->rest_losses + f->paper_phase_losses + f->frictionless_motion;
+    j["fallbacks"] = {
+        {"handovers_stalled", f->handovers_stalled}, {"handovers_timed_out", f->handovers_timed_out},
+        {"bounded_rounds", f->bounded_rounds},       {"pyramid_forces", f->pyramid_forces},
+        {"unsolved_forces", f->unsolved_forces},     {"unresolved_forces", f->unresolved_forces}};
     j["captures"] = {{"zeno", f->zeno_captures}, {"painleve", r.painleve}, {"tip_offs", f->tip_offs}};
   }
   j["sliding_distance"] = r.sliding_distance;

@@ -59,6 +59,10 @@ inline constexpr double kSpeed = 1e-9;  ///< × sqrt(g·L): a contact point slow
 /// slip of a point that stops sliding is located down to kSpeed, and a drift of a sticking point past this
 /// is a slide that friction stops again at once.
 inline constexpr double kSlipSpeed = 1e-6;
+/// A point at rest slides once its slip exceeds this many slip_speeds, and a sliding point whose slip turned
+/// back below that is at rest (issue 48): without the band a slip of about slip_speed whose direction turns
+/// fast (a tiny slip under a sideways acceleration) alternated between the two rules at every event.
+inline constexpr double kSlipHysteresis = 2;
 inline constexpr double kAccel = 1e-9;  ///< × g: a contact point's acceleration below this is none
 inline constexpr double kStill = 1e-9;  ///< × m·g·L: kinetic energy below this is no motion (edge balances)
 inline constexpr double kAxisRate = 1e-12;  ///< × sqrt(g/L): an angular velocity below this has no axis

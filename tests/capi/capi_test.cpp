@@ -174,6 +174,40 @@ TEST_P(CApiVelocity, TheStateVelocityIsTheDerivativeOfThePosition) {
 // While a run goes on, the points on the floor are the hull vertices within the contact band (ε·L) of the
 // floor (the engine's count within one, its set being updated at its steps' ends); at rest, the support, on
 // the floor.
+// Issue 48: the frictional phase's ledger and fallbacks through C are the C++ result's, and close ΔE; with
+// friction infinite every field is zero.
+TEST(CApi, FrictionAccountIsTheCppLedger) {
+  for (const Case& c : cases()) {
+    Handles h;
+    make(h, c.shape, c.restitution, c.friction);
+    repose_settler* s = nullptr;
+    ASSERT_EQ(repose_settler_new(h.particle, h.params, &c.start, c.floor, &s), REPOSE_OK)
+        << repose_last_error();
+    ASSERT_EQ(repose_settler_run(s), REPOSE_OK);
+    repose_friction_account a{};
+    repose_result r{};
+    ASSERT_EQ(repose_settler_friction_account(s, &a), REPOSE_OK) << repose_last_error();
+    ASSERT_EQ(repose_settler_result(s, &r), REPOSE_OK);
+    repose_settler_free(s);
+    if (!std::isfinite(c.friction)) {
+      EXPECT_EQ(a.friction_work, 0) << c.shape;
+      EXPECT_EQ(a.handovers_timed_out + a.handovers_stalled + a.zeno_captures, 0) << c.shape;
+      continue;
+    }
+    const Particle p = load_particle(c.shape, 2650);
+    const double mgl = p.mass.mass * 9.81 * p.length;
+    const double residual = r.energy_end - r.energy_start + a.impact_losses + a.friction_work +
+                            a.damping_work - a.normal_work + a.stopping_losses + a.drift_corrections -
+                            a.repositioning + a.rest_losses + a.paper_phase_losses + a.frictionless_motion;
+    EXPECT_LT(std::abs(residual), 1e-6 * mgl) << c.shape;
+    EXPECT_GT(a.impact_losses, 0) << c.shape;
+    EXPECT_EQ(a.handovers_stalled + a.handovers_timed_out + a.bounded_rounds, 0) << c.shape;
+    EXPECT_EQ(a.pyramid_forces + a.unsolved_forces + a.unresolved_forces, 0) << c.shape;
+  }
+  repose_friction_account a{};
+  EXPECT_EQ(repose_settler_friction_account(nullptr, &a), REPOSE_ERROR_NULL_POINTER);
+}
+
 TEST(CApi, ContactPointsAreTheVerticesInTheBand) {
   Handles h;
   make(h, "irregular:seed=3", 0, INFINITY);

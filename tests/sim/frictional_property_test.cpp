@@ -4,7 +4,7 @@
 //   - the mechanical energy never rises, beyond what the ledger's non-dissipative terms (the normal forces'
 //     work on drifting points, the repositioning of drift undone) account for, by more than kRise;
 //   - no point pressed on the wall pulls (N ≥ −kForce), none above the band carries a force, and friction's
-//     power at each point is ≤ 0 beyond μ·N·slip_speed (a point at rest slips below slip_speed by
+//     power at each point is ≤ 0 beyond μ·N·2·slip_speed (a point at rest slips below 2·slip_speed by
 //     definition);
 //   - at the end: a status (every loop bounded), no vertex deeper than 1e-9·L, the ledger closed to
 //     1e-6·m·g·L (issue 48's bound), and every fallback counted, printed by kind.
@@ -75,7 +75,7 @@ Toss make_toss(std::uint64_t index) {
 }
 
 struct Totals {
-  long holds = 0, handovers = 0, bounded = 0, pyramids = 0, unsolved = 0, unresolved = 0, zeno = 0,
+  long stalled = 0, handovers = 0, bounded = 0, pyramids = 0, unsolved = 0, unresolved = 0, zeno = 0,
        painleve = 0;
   double worst_residual = 0, worst_rise = 0;
 };
@@ -104,12 +104,16 @@ std::string check_toss(const Toss& t, Totals& totals) {
         const double N = p.force.z(), scale = m * g * (1 + mu);
         if (N < -kForce * scale)
           why << " a point pulls (N = " << N / (m * g) << " m·g) at t = " << now.t << ";";
-        if (N > kForce * scale && p.point.z() > engine.run().tol.frictional_band)
+        // (at a lift-off the step ends where the point is at the band's edge, to the locator's resolution)
+        if (N > kForce * scale && p.point.z() > (1 + 1e-6) * engine.run().tol.frictional_band)
           why << " a force on a point " << p.point.z() / L << "·L above the wall at t = " << now.t << ";";
         const double power = p.force.head<2>().dot(p.velocity.head<2>());
-        if (power >
-            mu * std::max(N, 0.0) * engine.run().tol.slip_speed + kForce * scale * engine.run().tol.speed)
-          why << " friction's power " << power << " > 0 at t = " << now.t << ";";
+        if (power > mu * std::max(N, 0.0) * tol::kSlipHysteresis * engine.run().tol.slip_speed +
+                        kForce * scale * engine.run().tol.speed)
+          why << " friction's power " << power << " > 0 at t = " << now.t << " (N = " << N
+              << ", |F_t| = " << p.force.head<2>().norm() << ", slip "
+              << p.velocity.head<2>().norm() / engine.run().tol.slip_speed << " slip_speed, height "
+              << p.point.z() / L << " L);";
       }
     }
     if (!why.str().empty()) break;
@@ -124,12 +128,16 @@ std::string check_toss(const Toss& t, Totals& totals) {
     double impacts = 0;
     for (const ImpactRecord& i : r.impacts) impacts += i.energy_before - i.energy_after;
     const double residual = r.energy_end - r.energy_start + impacts + r.friction_work + r.damping_work -
-                            f.normal_work + f.stopping_losses - f.repositioning + f.rest_losses +
-                            f.paper_phase_losses;
+                            f.normal_work + f.stopping_losses + f.drift_corrections - f.repositioning +
+                            f.rest_losses + f.paper_phase_losses + f.frictionless_motion;
     totals.worst_residual = std::max(totals.worst_residual, std::abs(residual) / mgL);
     if (std::abs(residual) > 1e-6 * mgL) why << " the ledger is off by " << residual / mgL << " m·g·L;";
-    totals.holds += f.holds;
-    totals.handovers += f.handovers_stalled + f.handovers_timed_out;
+    totals.stalled += f.handovers_stalled;
+    totals.handovers += f.handovers_timed_out;
+    if (std::getenv("REPOSE_FRICTION_LIST") &&
+        f.handovers_stalled + f.handovers_timed_out + f.bounded_rounds > 0)
+      std::cout << t.describe << ": hand-overs " << f.handovers_stalled << " stalled, "
+                << f.handovers_timed_out << " timed out; bounded rounds " << f.bounded_rounds << "\n";
     totals.bounded += f.bounded_rounds;
     totals.pyramids += f.pyramid_forces;
     totals.unsolved += f.unsolved_forces;
@@ -153,11 +161,11 @@ TEST(FrictionalProperty, RandomTossesOfRandomConvexPolyhedraKeepEveryInvariant) 
     if (!why.empty() && ++failures <= 10) ADD_FAILURE() << t.describe << ":" << why;
   }
   std::cout << count << " tosses: largest rise " << totals.worst_rise << " m·g·L, largest ledger residual "
-            << totals.worst_residual << " m·g·L; fallbacks: holds " << totals.holds << ", hand-overs "
-            << totals.handovers << ", bounded rounds " << totals.bounded << ", pyramid forces "
-            << totals.pyramids << ", unsolved forces " << totals.unsolved << ", unresolved forces "
-            << totals.unresolved << "; captures: Zeno " << totals.zeno << ", Painlevé " << totals.painleve
-            << "\n";
+            << totals.worst_residual << " m·g·L; fallbacks: hand-overs stalled " << totals.stalled
+            << ", timed out " << totals.handovers << ", bounded rounds " << totals.bounded
+            << ", pyramid forces " << totals.pyramids << ", unsolved forces " << totals.unsolved
+            << ", unresolved forces " << totals.unresolved << "; captures: Zeno " << totals.zeno
+            << ", Painlevé " << totals.painleve << "\n";
   EXPECT_EQ(failures, 0) << " of " << count << " tosses broke a property";
 }
 

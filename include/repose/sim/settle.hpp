@@ -85,22 +85,26 @@ struct ImpactRecord {
 /// the terms of the energy ledger beyond the impacts', friction's and the damping's, and every fallback and
 /// capture, counted by kind (the goal for each fallback: none). Energies in mass·length²/time²; the ledger
 /// closes as  energy_end − energy_start = −Σ impact losses − friction_work − damping_work + normal_work −
-/// stopping_losses + repositioning − rest_losses − paper_phase_losses,  to the integrator's tolerance.
+/// stopping_losses − drift_corrections + repositioning − rest_losses − paper_phase_losses −
+/// frictionless_motion,  to the integrator's tolerance.
 struct FrictionalAccount {
   double normal_work = 0;         ///< done on the body by the normal forces between events (signed)
   double stopping_losses = 0;     ///< kinetic energy the stopping impulses at points at rest took
+  double drift_corrections = 0;   ///< kinetic energy taken by undoing held points' velocity drift
   double repositioning = 0;       ///< potential energy of moves that are not motion: drift undone, tip-offs
   double rest_losses = 0;         ///< kinetic energy left when the body was declared still (< m·g·band)
   double paper_phase_losses = 0;  ///< taken by the paper's phase after a hand-over to it
-  int handovers_stalled = 0;      ///< hand-overs to the paper's phase: segments kept ending at once
-  int handovers_timed_out = 0;    ///< hand-overs to the paper's phase: still moving after 200·τ
-  int holds = 0;                  ///< segments with every point taken as at rest (after stalls)
-  int bounded_rounds = 0;         ///< segment starts whose impacts and captures hit their bound
-  long pyramid_forces = 0;        ///< force evaluations that kept Lemke's pyramid (friction off by ≤ 15°)
-  long unsolved_forces = 0;       ///< force evaluations with no solution reached (no contact force applied)
-  long unresolved_forces = 0;     ///< force evaluations whose sweeps did not converge
-  int zeno_captures = 0;          ///< accumulations of impacts closed at once (recorded as impacts too)
-  int tip_offs = 0;               ///< still balances turned by the paper's rule for an edge balance
+  /// μ = 0: the kinetic energy of the horizontal translation and the spin about the vertical the body keeps
+  /// at rest (nothing stops them without friction; its pose is final, and the run ends there)
+  double frictionless_motion = 0;
+  int handovers_stalled = 0;    ///< hand-overs to the paper's phase: segments kept ending at once
+  int handovers_timed_out = 0;  ///< hand-overs to the paper's phase: still moving after 200·τ
+  int bounded_rounds = 0;       ///< segment starts whose impacts and captures hit their bound
+  long pyramid_forces = 0;      ///< force evaluations that kept Lemke's pyramid (friction off by ≤ 15°)
+  long unsolved_forces = 0;     ///< force evaluations with no solution reached (no contact force applied)
+  long unresolved_forces = 0;   ///< force evaluations whose sweeps did not converge
+  int zeno_captures = 0;        ///< accumulations of impacts closed at once (recorded as impacts too)
+  int tip_offs = 0;             ///< still balances turned by the paper's rule for an edge balance
 };
 
 struct SettleResult {

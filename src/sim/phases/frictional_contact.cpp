@@ -44,7 +44,7 @@ double FrictionalContact::kinetic_energy() const {
   return sim::kinetic_energy(run_.body.mass, R * run_.body.inertia * R.transpose(), {velocity_, omega_});
 }
 
-bool FrictionalContact::stalled() const { return stalls_ >= 2 * kStalls; }
+bool FrictionalContact::stalled() const { return stalls_ >= kStalls; }
 
 std::pair<int, int> FrictionalContact::points_before_start() const {
   const Run& run = run_;
@@ -92,10 +92,9 @@ std::optional<RestPose> FrictionalContact::step() {
   move_to(end);
   if (end == event_) step_end_ = end;  // a new segment starts at the event
   // Segments that end at once, one after another (a slip that stops as soon as it is taken as sliding, an
-  // event found again at once), are bounded: after kStalls of them the next segment takes every point as at
-  // rest on the wall; after kStalls more the engine hands the run to the paper's phase (stalled()).
+  // event found again at once), are bounded: after kStalls of them the engine hands the run to the paper's
+  // phase (stalled(), counted).
   stalls_ = end - segment_start_ <= kStallTime * run.tol.time_scale ? stalls_ + 1 : 0;
-  hold_ = stalls_ >= kStalls;
   return std::nullopt;
 }
 
@@ -134,7 +133,9 @@ void FrictionalContact::classify() {
     active_.push_back(static_cast<int>(k));
     PointCondition c;
     const Vec2 slip = u.head<2>();
-    if (slip.norm() > run.tol.slip_speed && !hold_) {
+    const bool slid = std::find(sliding_before_.begin(), sliding_before_.end(), static_cast<int>(k)) !=
+                      sliding_before_.end();
+    if (slip.norm() > (slid ? tol::kSlipHysteresis : 1.0) * run.tol.slip_speed) {
       c.rule = PointRule::sliding;
       c.direction = slip.normalized();
     }
@@ -163,7 +164,6 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
     run.com.z() -= lowest;
     run.record.account.repositioning -= run.body.mass * run.params.gravity * lowest;  // in the ledger
   }
-  if (hold_) ++run.record.account.holds;
   bool settled = false;
   for (int round = 0; round < kSegmentRounds && !settled; ++round) {
     classify();
@@ -178,7 +178,21 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
     classify();
     forces_ = forces_at({run.com, velocity_, run.q, omega_});
   }
-  hold_resting_points();
+  undo_drift();
+  // Points newly at rest driven into the wall: stopped by the plastic law; a point at rest that the impulses
+  // set slipping faster than slip_speed slides from here (its friction against its slip, not its
+  // acceleration).
+  if (stop_landed_points()) {
+    for (std::size_t i = 0; i < active_.size(); ++i) {
+      const Vec3 arm = run.q * verts[static_cast<std::size_t>(active_[i])];
+      const Vec2 slip = (velocity_ + omega_.cross(arm)).head<2>();
+      if (conditions_[i].rule == PointRule::unilateral &&
+          slip.norm() > tol::kSlipHysteresis * run.tol.slip_speed)
+        conditions_[i] = {PointRule::sliding, slip.normalized(), 0.0};
+    }
+    forces_ = forces_at({run.com, velocity_, run.q, omega_});
+    count_fallbacks(forces_);
+  }
   const std::size_t n = active_.size();
   if (forces_.forces.size() == n) warm_start_ = forces_.forces;
   if (run.trace)
@@ -190,9 +204,21 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
   // Rest: on the wall with too little energy to lift it out of the band (a rocking block's impacts would
   // otherwise accumulate without end, as Housner's do), nothing accelerating with the velocities at zero,
   // over a stable face. The energy dropped is at most m·g·band.
-  const bool slides = std::any_of(conditions_.begin(), conditions_.end(),
-                                  [](const PointCondition& c) { return c.rule == PointRule::sliding; });
-  if (n > 0 && !slides && kinetic_energy() <= run.tol.rest_energy) {
+  // Without friction nothing ever stops the centre of mass's horizontal velocity nor the spin about the
+  // vertical (the wall's forces are vertical: no horizontal force, no vertical moment): the rest is judged
+  // in the frame that moves and turns with them (the same pose), and the motion the body keeps is in the
+  // ledger (FrictionalAccount::frictionless_motion).
+  const bool frictionless = run.params.friction == 0;
+  double translation = 0;
+  if (frictionless) {
+    const Mat3 R = run.q.toRotationMatrix();
+    translation = sim::kinetic_energy(run.body.mass, R * run.body.inertia * R.transpose(),
+                                      {Vec3(velocity_.x(), velocity_.y(), 0), Vec3(0, 0, omega_.z())});
+  }
+  const bool slides =
+      !frictionless && std::any_of(conditions_.begin(), conditions_.end(),
+                                   [](const PointCondition& c) { return c.rule == PointRule::sliding; });
+  if (n > 0 && !slides && kinetic_energy() - translation <= run.tol.rest_energy) {
     std::vector<int> band;  // every point within the band, leaving or not: the body cannot leave it
     for (std::size_t k = 0; k < verts.size(); ++k)
       if (run.com.z() + (run.q * verts[k]).z() <= run.tol.frictional_band)
@@ -217,7 +243,8 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
         }
       } else if (auto rest = flush_rest(run, support)) {
         run.record.account.repositioning += run.potential_energy() - potential_before;
-        run.record.account.rest_losses += kinetic_energy();
+        run.record.account.frictionless_motion += translation;
+        run.record.account.rest_losses += kinetic_energy() - translation;
         velocity_ = omega_ = Vec3::Zero();
         return rest;
       } else if (tip_offs_ < kTipOffs && tip_off_balance(support)) {

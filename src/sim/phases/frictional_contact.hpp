@@ -61,12 +61,16 @@ class FrictionalContact {
   bool resolve_impacts();
   bool capture_returning_points();
   bool resolve_painleve();
-  void hold_resting_points();
+  std::vector<std::pair<Vec3, bool>> resting_points() const;
+  bool stop_landed_points();
+  void undo_drift();
   bool tip_off_balance(const Support& support);
   bool face_on_wall(int face) const;
   bool tip_onto_face(const std::vector<int>& band, int face);
   void turn_past_line(const Vec3& pivot, const Vec2& outward);
-  Eigen::VectorXd stopping_impulses(const std::vector<Vec3>& arms) const;
+  // The least-norm impulses at `arms` that bring them to rest (`along`: in every direction, else only across
+  // the wall).
+  Eigen::VectorXd stopping_impulses(const std::vector<Vec3>& arms, bool along) const;
   BodyRates rates(const BodyState& s) const;
   void count_fallbacks(const ContactForces& f) const;
   ContactForces forces_at(const BodyState& s) const;  // at the segment's points, by their rules
@@ -85,17 +89,19 @@ class FrictionalContact {
   BodyLedger ledger_;
   std::vector<int> active_;                 // hull vertices on the wall and not leaving it
   std::vector<PointCondition> conditions_;  // their rules for this segment
-  std::vector<int> leaving_slowly_;         // in the band, leaving slower than the separation speed
-  ContactForces forces_;                    // at the segment's start
-  std::vector<Vec3> warm_start_;            // forces_' forces, where the sweeps of the rates start
+  std::vector<int> leaving_slowly_;
+  std::vector<int> at_rest_before_;  // the points at rest in the segment before (hull vertices)
+  std::vector<int>
+      sliding_before_;  // and those sliding         // in the band, leaving slower than the separation speed
+  ContactForces forces_;          // at the segment's start
+  std::vector<Vec3> warm_start_;  // forces_' forces, where the sweeps of the rates start
   double step_end_ = -INFINITY;
   double event_ = INFINITY;
   bool started_ = false;
   double start_time_ = 0;
   double segment_start_ = 0;
-  int stalls_ = 0;     // segments in a row that ended at once
-  bool hold_ = false;  // after a stall: every point taken as at rest for one segment
-  int tip_offs_ = 0;   // balances tipped off
+  int stalls_ = 0;    // segments in a row that ended at once
+  int tip_offs_ = 0;  // balances tipped off
 };
 
 }  // namespace repose::sim

@@ -1,5 +1,6 @@
 // The frictional contact phase's event search (frictional_contact.hpp): a vertex reaching the wall, one on it
-// sinking below its drift, a sliding point's slip stopping or turning back, located on the dense output.
+// sinking below its drift, a point's rule ending (a slip stopping or turning back, a point at rest starting
+// to slip, a point lifting out of the band), located on the dense output.
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -42,14 +43,21 @@ double FrictionalContact::locate_event(double a, double b) {
   // wall among hundreds.
   std::vector<std::size_t> near;
   const auto near_touches = [&](double t) { return any_below(t, near); };
-  // A sliding point's slip stopping, or turning against its direction at the segment's start.
-  const auto slip_stops = [&](double t) {
+  // A point's rule ending: a sliding point's slip stopping, or turning against its direction at the segment's
+  // start; a point at rest starting to slip (issue 48: it kept the rule of a point at rest until the step
+  // ended, sticking while it moved); a point on the wall lifting out of the band (issue 48: the set was
+  // fixed for the step, and a point that had lifted could take a force above the wall).
+  const auto rule_ends = [&](double t) {
     const BodyState s = integrator_.state_at(t);
     for (std::size_t i = 0; i < active_.size(); ++i) {
-      if (conditions_[i].rule != PointRule::sliding) continue;
-      const Vec2 slip =
-          (s.velocity + s.omega.cross(s.q * verts[static_cast<std::size_t>(active_[i])])).head<2>();
-      if (slip.norm() <= run.tol.speed || slip.dot(conditions_[i].direction) <= 0) return true;
+      const Vec3 arm = s.q * verts[static_cast<std::size_t>(active_[i])];
+      if (s.com.z() + arm.z() > run.tol.frictional_band) return true;
+      const Vec2 slip = (s.velocity + s.omega.cross(arm)).head<2>();
+      if (conditions_[i].rule == PointRule::sliding) {
+        if (slip.norm() <= run.tol.speed || slip.dot(conditions_[i].direction) <= 0) return true;
+      } else if (slip.norm() > tol::kSlipHysteresis * run.tol.slip_speed) {
+        return true;
+      }
     }
     return false;
   };
@@ -103,7 +111,7 @@ double FrictionalContact::locate_event(double a, double b) {
       touch = true;
       upper = d;
     }
-    const bool stop = slip_stops(t);
+    const bool stop = rule_ends(t);
     if (touch || stop) {
       double when = INFINITY;
       // A touch at the bracket's lower end (nothing below the wall yet), a stop at its upper end (stopped).
@@ -127,7 +135,7 @@ double FrictionalContact::locate_event(double a, double b) {
         if (l.found()) when = l.lo;
       }
       if (stop) {
-        const Located l = locate(prev, t, search, slip_stops, monotone);
+        const Located l = locate(prev, t, search, rule_ends, monotone);
         if (l.found()) when = std::min(when, l.hi);
       }
       if (std::isfinite(when)) return std::max(when, std::nextafter(a, INFINITY));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../multi_impact.hpp"
 #include "frictional_contact.hpp"
 #include "impact.hpp"
 
@@ -30,7 +31,7 @@ bool FrictionalContact::resolve_impacts() {
 
 // The least-norm impulses at the points `arms` that bring them to rest: their velocities are u = u0 + W·P
 // with W the stacked Delassus matrix (blocks K_ij); an edge's two corners leave the rotation about it free.
-Eigen::VectorXd FrictionalContact::stopping_impulses(const std::vector<Vec3>& arms) const {
+Eigen::VectorXd FrictionalContact::stopping_impulses(const std::vector<Vec3>& arms, bool along) const {
   const Mat3 R = run_.q.toRotationMatrix();
   const Mat3 inverse_inertia = R * run_.body.inertia.inverse() * R.transpose();
   const double m = run_.body.mass;
@@ -42,31 +43,83 @@ Eigen::VectorXd FrictionalContact::stopping_impulses(const std::vector<Vec3>& ar
     for (std::size_t j = 0; j < n; ++j)
       W.block<3, 3>(3 * i, 3 * j) = delassus_block(m, inverse_inertia, arms[i], arms[j]);
   }
-  return W.completeOrthogonalDecomposition().solve(-u0);
+  if (along) return W.completeOrthogonalDecomposition().solve(-u0);
+  // The normal components only: W's normal rows and columns.
+  Eigen::MatrixXd G(n, n);
+  Eigen::VectorXd un(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    un(static_cast<Eigen::Index>(i)) = u0(3 * static_cast<Eigen::Index>(i) + 2);
+    for (std::size_t j = 0; j < n; ++j)
+      G(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
+          W(3 * static_cast<Eigen::Index>(i) + 2, 3 * static_cast<Eigen::Index>(j) + 2);
+  }
+  const Eigen::VectorXd Pn = G.completeOrthogonalDecomposition().solve(-un);
+  Eigen::VectorXd P = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(n));
+  for (std::size_t i = 0; i < n; ++i)
+    P(3 * static_cast<Eigen::Index>(i) + 2) = Pn(static_cast<Eigen::Index>(i));
+  return P;
 }
 
-// Points at rest on the wall keep a residual velocity, the integrator's drift (below slip_speed along the
-// wall, below speed across it): it is taken out at each segment's start, so that it neither accumulates into
-// a slip nor into a depth — and, at a point that starts to slide, so that the force on the cone's edge
-// (against the slip's acceleration, not this residual) does no work on it: 1e-6·√(g·L) of residual slip
-// under μ·m·g would feed the body ~1e-8·m·g·L in a hundredth of τ. The kinetic energy this removes is
-// ½·uᵀ·W⁺·u ≤ ½·m·slip_speed² per point (5e-13·m·g·L), never added (least-norm stopping impulses).
-void FrictionalContact::hold_resting_points() {
-  std::vector<Vec3> arms;
-  for (std::size_t i = 0; i < active_.size(); ++i)
-    if (conditions_[i].rule == PointRule::unilateral)
-      arms.push_back(run_.q * run_.particle.hull.vertices[static_cast<std::size_t>(active_[i])]);
-  if (arms.empty()) return;
+// Points at rest on the wall keep a residual velocity. At a point that was at rest through the segment before
+// too, it is the integrator's drift from the rule it kept (no slip, no normal motion: below slip_speed along
+// the wall, below speed across it): undone by the least-norm velocity change that brings those points to
+// rest — a projection, not an impulse of the wall, whose kinetic energy is in the ledger
+// (drift_corrections) — along the wall only where there is friction to hold them (μ > 0). At a point newly
+// at rest (a slide that stopped, a landing) the residual is the motion's own: where it drives the point into
+// the wall it is stopped by the plastic impact law with Coulomb's friction (collide_points, E = 0: no
+// impulse pulls, every one in its cone; issue 48), and a slip the cone cannot stop is left (below
+// slip_speed the point is at rest; a slip that grows past it is an event).
+// The points at rest now (hull vertices), and whether each was at rest in the segment before too.
+std::vector<std::pair<Vec3, bool>> FrictionalContact::resting_points() const {
+  std::vector<std::pair<Vec3, bool>> out;
+  for (std::size_t i = 0; i < active_.size(); ++i) {
+    if (conditions_[i].rule != PointRule::unilateral) continue;
+    const int k = active_[i];
+    const bool held = std::find(at_rest_before_.begin(), at_rest_before_.end(), k) != at_rest_before_.end();
+    out.emplace_back(run_.q * run_.particle.hull.vertices[static_cast<std::size_t>(k)], held);
+  }
+  return out;
+}
+
+bool FrictionalContact::stop_landed_points() {
+  std::vector<Vec3> landed;
+  bool approaching = false;
+  for (const auto& [arm, held] : resting_points()) {
+    if (held) continue;
+    landed.push_back(arm);
+    approaching = approaching || (velocity_ + omega_.cross(arm)).z() < 0;
+  }
+  if (!approaching) return false;
   const double before = kinetic_energy();
-  const Eigen::VectorXd P = stopping_impulses(arms);
+  const Mat3 R = run_.q.toRotationMatrix();
+  const MultiImpactOutcome out = collide_points(run_.body.mass, R * run_.body.inertia * R.transpose(), landed,
+                                                {velocity_, omega_}, {0.0, run_.params.friction});
+  run_.record.account.unresolved_forces += !out.converged;
+  velocity_ = out.after.velocity;
+  omega_ = out.after.omega;
+  run_.record.account.stopping_losses += before - kinetic_energy();
+  return true;
+}
+
+void FrictionalContact::undo_drift() {
+  std::vector<Vec3> held;
+  at_rest_before_.clear();
+  for (const auto& [arm, was_held] : resting_points())
+    if (was_held) held.push_back(arm);
+  sliding_before_.clear();
+  for (std::size_t i = 0; i < active_.size(); ++i)
+    (conditions_[i].rule == PointRule::unilateral ? at_rest_before_ : sliding_before_).push_back(active_[i]);
+  if (held.empty()) return;
   const Mat3 R = run_.q.toRotationMatrix();
   const Mat3 inverse_inertia = R * run_.body.inertia.inverse() * R.transpose();
-  for (std::size_t i = 0; i < arms.size(); ++i) {
-    const Vec3 p = P.segment<3>(3 * i);
+  const double before = kinetic_energy();
+  const Eigen::VectorXd P = stopping_impulses(held, run_.params.friction > 0);
+  for (std::size_t i = 0; i < held.size(); ++i) {
+    const Vec3 p = P.segment<3>(3 * static_cast<Eigen::Index>(i));
     velocity_ += p / run_.body.mass;
-    omega_ += inverse_inertia * arms[i].cross(p);
+    omega_ += inverse_inertia * held[i].cross(p);
   }
-  run_.record.account.stopping_losses += before - kinetic_energy();
+  run_.record.account.drift_corrections += before - kinetic_energy();
 }
 
 // Zeno's accumulation of impacts (a block rocking between two edges of its face, a polyhedron rolling across
@@ -151,7 +204,7 @@ bool FrictionalContact::resolve_painleve() {
   const std::size_t n = arms.size();
   Eigen::VectorXd u0(3 * n);
   for (std::size_t i = 0; i < n; ++i) u0.segment<3>(3 * i) = velocity_ + omega_.cross(arms[i]);
-  const Eigen::VectorXd P = stopping_impulses(arms);
+  const Eigen::VectorXd P = stopping_impulses(arms, true);
   ImpactRecord record;
   record.t = run.t;
   record.points = static_cast<int>(n);
