@@ -60,15 +60,15 @@ Eigen::VectorXd FrictionalContact::stopping_impulses(const std::vector<Vec3>& ar
   return P;
 }
 
-// Points at rest on the wall keep a residual velocity. At a point that was at rest through the segment before
-// too, it is the integrator's drift from the rule it kept (no slip, no normal motion: below slip_speed along
-// the wall, below speed across it): undone by the least-norm velocity change that brings those points to
-// rest — a projection, not an impulse of the wall, whose kinetic energy is in the ledger
-// (drift_corrections) — along the wall only where there is friction to hold them (μ > 0). At a point newly
-// at rest (a slide that stopped, a landing) the residual is the motion's own: where it drives the point into
-// the wall it is stopped by the plastic impact law with Coulomb's friction (collide_points, E = 0: no
-// impulse pulls, every one in its cone; issue 48), and a slip the cone cannot stop is left (below
-// slip_speed the point is at rest; a slip that grows past it is an event).
+// Points at rest on the wall keep a residual velocity (below 2·slip_speed along the wall, below speed across
+// it). Where it drives a point newly at rest (a slide that stopped, a landing) into the wall, the point is
+// stopped by the plastic impact law with Coulomb's friction (collide_points, E = 0: no impulse pulls, every
+// one in its cone; issue 48), in stopping_losses. What is left at every point at rest is below the speeds
+// by which the model calls it at rest: undone by the least-norm velocity change that brings those points to
+// rest — a projection onto the model's own state, not an impulse of the wall — along the wall only where
+// there is friction (μ > 0), its kinetic energy in the ledger (drift_corrections). Without it the rule of a
+// point at rest (its acceleration, not its residual slip, decides its friction) let friction do positive
+// work on that slip.
 // The points at rest now (hull vertices), and whether each was at rest in the segment before too.
 std::vector<std::pair<Vec3, bool>> FrictionalContact::resting_points() const {
   std::vector<std::pair<Vec3, bool>> out;
@@ -103,9 +103,8 @@ bool FrictionalContact::stop_landed_points() {
 
 void FrictionalContact::undo_drift() {
   std::vector<Vec3> held;
+  for (const auto& [arm, was_held] : resting_points()) held.push_back(arm);
   at_rest_before_.clear();
-  for (const auto& [arm, was_held] : resting_points())
-    if (was_held) held.push_back(arm);
   sliding_before_.clear();
   for (std::size_t i = 0; i < active_.size(); ++i)
     (conditions_[i].rule == PointRule::unilateral ? at_rest_before_ : sliding_before_).push_back(active_[i]);
