@@ -70,6 +70,27 @@ TEST(MultiImpact, FaceLandingWhileSlidingDoesNotPitch) {
   }
 }
 
+// Issue 48: friction's impulse is μ times the normal impulse, not μ: the same plastic landing with a normal
+// impulse that is not 1 (mass m, landing at v_z = −w: the normal impulse is m·w and friction takes μ·w off
+// v_x, at most all of it). A cone taken as μ alone (a planted bug) passed the test above, whose impulse is 1.
+TEST(MultiImpact, SlidingLandingLosesMuTimesTheNormalImpulse) {
+  for (const double mass : {0.5, 3.0})
+    for (const double w : {0.4, 2.5})
+      for (const double mu : {0.1, 0.3}) {
+        const Motion before{Vec3(1, 0, -w), Vec3::Zero()};
+        const MultiImpactOutcome out =
+            collide_points(mass, mass * kCubeInertia, bottom_corners(), before, {0.0, mu});
+        ASSERT_TRUE(out.converged);
+        EXPECT_NEAR(out.after.velocity.x(), std::max(0.0, 1 - mu * w), 1e-12)
+            << mass << " " << w << " " << mu;
+        EXPECT_NEAR(out.after.velocity.z(), 0, 1e-12);
+        double normal = 0, tangential = 0;
+        for (const Vec3& p : out.impulses) normal += p.z(), tangential += p.x();
+        EXPECT_NEAR(normal, mass * w, 1e-12 * mass * w);
+        EXPECT_NEAR(-tangential, mass * std::min(1.0, mu * w), 1e-12 * mass);
+      }
+}
+
 // The same landing with E = 0.5: restitution gives each corner half its compression normal impulse (0.5 in
 // all, the front pair 0.325, the back 0.175) with friction on the cone against the slip still left (0.7):
 // μ·0.5 = 0.15 more off v_x, and the pair's imbalance (0.325 − 0.175)·1/2 = 0.075 again balances the
