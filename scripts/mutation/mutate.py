@@ -106,7 +106,9 @@ def list_tests(build_dir, exclude):
             k, _, v = item.partition("=")
             env[k] = v
         tests.append({"name": t["name"], "command": t["command"],
-                      "cwd": props.get("WORKING_DIRECTORY", str(build_dir)), "env": env})
+                      "cwd": props.get("WORKING_DIRECTORY", str(build_dir)), "env": env,
+                      "setup": set(props.get("FIXTURES_SETUP", [])),
+                      "requires": set(props.get("FIXTURES_REQUIRED", []))})
     return tests
 
 
@@ -125,7 +127,14 @@ def run_tests(tests, order, timeouts, jobs, stop_on_failure=True):
     failed, how = None, None
     while (pending and not (failed and stop_on_failure)) or running:
         while pending and len(running) < jobs and not (failed and stop_on_failure):
-            name = pending.pop(0)
+            # CTest's fixtures: a test waits until every test that sets up what it requires has ended (the
+            # Fortran example reads the reference another test writes).
+            unset = {f for n in pending + list(running) for f in tests[n].get("setup", ())}
+            ready = [n for n in pending if not (tests[n].get("requires", set()) & unset)]
+            if not ready:
+                break
+            name = ready[0]
+            pending.remove(name)
             t = tests[name]
             proc = subprocess.Popen(t["command"], cwd=t["cwd"], env=t["env"], stdout=subprocess.DEVNULL,
                                     stderr=subprocess.DEVNULL, start_new_session=True)
