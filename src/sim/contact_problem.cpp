@@ -172,7 +172,7 @@ Vec3 local_reaction(const Mat3& W, const Vec3& f, double mu, const PointConditio
 }
 
 // The body's values with the reactions `reactions` applied to (lin, ang).
-void apply(const ContactProblem& p, const Vec3& lin, const Vec3& ang, ContactSolution& s) {
+void apply_reactions(const ContactProblem& p, const Vec3& lin, const Vec3& ang, ContactSolution& s) {
   s.lin = lin;
   s.ang = ang;
   for (std::size_t i = 0; i < p.arms.size(); ++i) {
@@ -235,7 +235,7 @@ ContactSolution exact_from_pyramid(const ContactProblem& p, const Vec3& lin, con
       for (std::size_t i = 0; i < n; ++i) diagonal[i] = delassus_block(p.mass, p.inverse_inertia, p.arms[i]);
       ContactSolution s;
       s.reactions = *newton;
-      apply(p, lin, ang, s);
+      apply_reactions(p, lin, ang, s);
       Counts counts;
       const double change = sweep_once(p, diagonal, conditions, s, counts);
       if (change <= kPolished * p.scale && counts.painleve == 0 && counts.unresolved == 0) return s;
