@@ -9,11 +9,11 @@
 //   - at the end: a status (every loop bounded), no vertex deeper than 1e-9·L, the ledger closed to
 //     1e-6·m·g·L (issue 48's bound), and every fallback counted, printed by kind.
 // REPOSE_FRICTION_TOSSES sets the number (default 60 in optimised builds, 6 in debug and sanitizer builds),
-// REPOSE_FRICTION_FIRST the first index, REPOSE_FRICTION_LIST=1 lists the tosses with a hand-over or a bounded
-// round. Measured on 20afe2e (REPOSE_FRICTION_TOSSES=2000, 34 s): every property holds on 2,000 of 2,000;
-// largest rise 1.6e-9·m·g·L, largest ledger residual 3.8e-7·m·g·L; fallbacks: 19 hand-overs to the paper's
-// phase (2 stalled, 17 timed out: frictionless tosses still rocking on an edge at 200·τ among them), 95
-// bounded segment rounds, 110 force evaluations on Lemke's pyramid, 5 unsolved, 6 unresolved.
+// REPOSE_FRICTION_FIRST the first index, REPOSE_FRICTION_LIST=1 lists the tosses with a hand-over or a
+// bounded round. Measured on 20afe2e (REPOSE_FRICTION_TOSSES=2000, 34 s): every property holds on 2,000 of
+// 2,000; largest rise 1.6e-9·m·g·L, largest ledger residual 3.8e-7·m·g·L; fallbacks: 19 hand-overs to the
+// paper's phase (2 stalled, 17 timed out: frictionless tosses still rocking on an edge at 200·τ among them),
+// 95 bounded segment rounds, 110 force evaluations on Lemke's pyramid, 5 unsolved, 6 unresolved.
 #include <gtest/gtest.h>
 
 #include <cmath>
