@@ -268,22 +268,11 @@ ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const V
   double previous_change = INFINITY;
   int next_polish = kSweepsBeforeNewton;
   for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
-    std::vector<Vec3> at_start(n);
-    for (std::size_t i = 0; i < n; ++i) at_start[i] = point_value(p, i, s.lin, s.ang);
     Counts counts;
+    const double change = sweep_once(p, diagonal, conditions, s, counts);
+    double largest = 0, round_off = 0;
     for (std::size_t i = 0; i < n; ++i) {
-      const Vec3 f = point_value(p, i, s.lin, s.ang) - diagonal[i] * s.reactions[i];
-      const Vec3 next = local_reaction(diagonal[i], f, p.friction, conditions[i], counts);
-      const Vec3 delta = next - s.reactions[i];
-      s.lin += delta / p.mass;
-      s.ang += p.inverse_inertia * p.arms[i].cross(delta);
-      s.reactions[i] = next;
-    }
-    double change = 0, largest = 0, round_off = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const Vec3 x = point_value(p, i, s.lin, s.ang);
-      change = std::max(change, (x - at_start[i]).norm());
-      largest = std::max(largest, x.norm());
+      largest = std::max(largest, point_value(p, i, s.lin, s.ang).norm());
       round_off = std::max(round_off, s.lin.norm() + s.ang.norm() * p.arms[i].norm() +
                                           (p.offsets.empty() ? 0.0 : p.offsets[i].norm()));
     }
