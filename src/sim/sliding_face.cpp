@@ -134,31 +134,33 @@ std::optional<FaceSolution> starting_slip(const ContactBody& body, const Motion&
     s = at->second.normalized();
   }
   const auto unit = [](double theta) { return Vec2(std::cos(theta), std::sin(theta)); };
-  const auto cross_at = [&](double theta, double* along) {
+  const auto cross_at = [&](double theta) {
     const Vec2 u = unit(theta);
     const auto at = slip_at(u);
     if (!at) return static_cast<double>(NAN);
-    if (along) *along = u.dot(at->second);
     return u.x() * at->second.y() - u.y() * at->second.x();
   };
+  // Every sign change of ŝ × a_t is bisected, and its root kept if the slip's acceleration points along ŝ
+  // there (near the stick threshold it does only close to the root, where a_t is small and turns fast with
+  // ŝ: the ends of a sample interval need not show it).
   const double step = 2 * std::numbers::pi / kDirectionSamples, start = std::atan2(guess.y(), guess.x());
-  double best = NAN, best_distance = INFINITY, along0 = 0;
-  double h0 = cross_at(start, &along0);
+  double best = NAN, best_distance = INFINITY;
+  double h0 = cross_at(start);
   for (int k = 1; k <= kDirectionSamples; ++k) {
-    double along1 = 0;
-    const double a = start + step * (k - 1), b = start + step * k, h1 = cross_at(b, &along1);
-
-    if (std::isfinite(h0) && std::isfinite(h1) && along0 > 0 && along1 > 0 && (h0 <= 0) != (h1 <= 0)) {
+    const double a = start + step * (k - 1), b = start + step * k, h1 = cross_at(b);
+    if (std::isfinite(h0) && std::isfinite(h1) && (h0 <= 0) != (h1 <= 0)) {
       double lo = a, hi = b;
       for (int i = 0; i < kDirectionBisections; ++i) {
-        const double mid = 0.5 * (lo + hi), hm = cross_at(mid, nullptr);
+        const double mid = 0.5 * (lo + hi), hm = cross_at(mid);
         ((hm <= 0) == (h0 <= 0) ? lo : hi) = mid;
       }
       const double root = 0.5 * (lo + hi),
                    distance = std::min(root - start, 2 * std::numbers::pi - (root - start));
-      if (distance < best_distance) best = root, best_distance = distance;
+      const auto at = slip_at(unit(root));
+      if (at && holds(unit(root), at->second) && distance < best_distance)
+        best = root, best_distance = distance;
     }
-    h0 = h1, along0 = along1;
+    h0 = h1;
   }
   if (!std::isfinite(best)) return std::nullopt;
   auto at = slip_at(unit(best));

@@ -63,6 +63,10 @@ inline constexpr double kSlipSpeed = 1e-6;
 /// back below that is at rest (issue 48): without the band a slip of about slip_speed whose direction turns
 /// fast (a tiny slip under a sideways acceleration) alternated between the two rules at every event.
 inline constexpr double kSlipHysteresis = 2;
+/// × separation_speed: an impact's rebound slower than this is tested for a Zeno capture (the point's normal
+/// acceleration under the other points' forces turning it back within the band: normal accelerations up to
+/// kZenoReach² · g can capture); a faster rebound leaves the band under any acceleration met in the tests.
+inline constexpr double kZenoReach = 10;
 inline constexpr double kAccel = 1e-9;  ///< × g: a contact point's acceleration below this is none
 inline constexpr double kStill = 1e-9;  ///< × m·g·L: kinetic energy below this is no motion (edge balances)
 inline constexpr double kAxisRate = 1e-12;  ///< × sqrt(g/L): an angular velocity below this has no axis

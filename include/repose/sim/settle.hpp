@@ -70,6 +70,9 @@ struct ImpactRecord {
   Vec3 point = Vec3::Zero();  ///< world; several vertices landing at once: their impulses' centre
   double normal_speed_before = 0, normal_speed_after = 0;
   double tangential_speed_before = 0, tangential_speed_after = 0;
+  /// The wall's whole impulse on the body (world frame, mass·length/time): m·(v_after − v_before). Every
+  /// point's impulse is in its friction cone, so this sum is too: |horizontal| ≤ μ·vertical.
+  Vec3 impulse = Vec3::Zero();
   bool stick = false;        ///< the contact point's sliding had stopped by the end of the impact
   int points = 1;            ///< hull vertices on the wall at the impact
   double energy_before = 0;  ///< kinetic + potential (mass·length²/time²)

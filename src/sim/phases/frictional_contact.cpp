@@ -124,7 +124,7 @@ void FrictionalContact::classify() {
     const double z = run.com.z() + arm.z();
     if (z > run.tol.frictional_band) continue;
     const Vec3 u = velocity_ + omega_.cross(arm);
-    if (u.z() > run.tol.speed) {  // leaving
+    if (u.z() > run.tol.speed) {  // leaving: it lifts (a slow one comes back as a Zeno capture)
       if (u.z() <= run.tol.separation_speed) leaving_slowly_.push_back(static_cast<int>(k));
       continue;
     }
@@ -170,7 +170,7 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
     if (resolve_impacts()) continue;
     forces_ = forces_at({run.com, velocity_, run.q, omega_});
     count_fallbacks(forces_);
-    if (capture_returning_points()) continue;
+    if (hold_unresolved_hops()) continue;
     settled = !resolve_painleve();
   }
   if (!settled) {  // the rounds' bound: the points as they are now
@@ -311,32 +311,33 @@ std::vector<FrictionalContact::PointForce> FrictionalContact::point_forces() con
 BodyRates FrictionalContact::rates(const BodyState& s) const {
   BodyRates r;
   if (active_.empty()) {
+    // A hop: free flight, as in the flight phase (Euler's equations, no damping off the wall).
     r.acceleration = Vec3(0, 0, -run_.params.gravity);
     const Mat3 R = s.q.toRotationMatrix();
     const Mat3 inertia = R * run_.body.inertia * R.transpose();
-    r.angular_acceleration =
-        inertia.inverse() * (-run_.params.damping * s.omega - s.omega.cross(inertia * s.omega));
-  } else {
-    const ContactForces f = forces_at(s);
-    count_fallbacks(f);
-    r.acceleration = f.acceleration;
-    r.angular_acceleration = f.angular_acceleration;
-    double normal = 0, weighted_slip = 0;
-    for (std::size_t i = 0; i < active_.size(); ++i) {
-      const Vec3 arm = s.q * run_.particle.hull.vertices[static_cast<std::size_t>(active_[i])];
-      const Vec3 u = s.velocity + s.omega.cross(arm);
-      r.friction_power += f.forces[i].head<2>().dot(u.head<2>());
-      r.normal_power += f.forces[i].z() * u.z();
-      // A sliding point's slip along the direction it slides in: past its stop (an event) the motion's
-      // extension slides on backwards, and the slip rate stays smooth there (negative) for the dense output.
-      const Vec2 ut = u.head<2>();
-      const Vec2& s0 = conditions_[i].direction;
-      const bool along = conditions_[i].rule == PointRule::sliding && ut.dot(s0) <= 0;
-      normal += f.forces[i].z();
-      weighted_slip += f.forces[i].z() * (along ? ut.dot(s0) : ut.norm());
-    }
-    if (normal > 0) r.slip_rate = weighted_slip / normal;
+    r.angular_acceleration = inertia.inverse() * -s.omega.cross(inertia * s.omega);
+    return r;
   }
+  const ContactForces f = forces_at(s);
+  count_fallbacks(f);
+  r.acceleration = f.acceleration;
+  r.angular_acceleration = f.angular_acceleration;
+  double normal = 0, weighted_slip = 0;
+  for (std::size_t i = 0; i < active_.size(); ++i) {
+    const Vec3 arm = s.q * run_.particle.hull.vertices[static_cast<std::size_t>(active_[i])];
+    const Vec3 u = s.velocity + s.omega.cross(arm);
+    r.friction_power += f.forces[i].head<2>().dot(u.head<2>());
+    r.normal_power += f.forces[i].z() * u.z();
+    // A sliding point's slip along the direction it slides in: past its stop (an event) the motion's
+    // extension slides on backwards, and the slip rate stays smooth there (negative) for the dense output.
+    const Vec2 ut = u.head<2>();
+    const Vec2& s0 = conditions_[i].direction;
+    const bool along = conditions_[i].rule == PointRule::sliding && ut.dot(s0) <= 0;
+    normal += f.forces[i].z();
+    weighted_slip += f.forces[i].z() * (along ? ut.dot(s0) : ut.norm());
+  }
+  if (normal > 0) r.slip_rate = weighted_slip / normal;
+  // The damping moment acts on the wall only (contact_forces.hpp's rates include it).
   r.damping_power = -run_.params.damping * s.omega.squaredNorm();
   return r;
 }

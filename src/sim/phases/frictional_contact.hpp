@@ -59,7 +59,7 @@ class FrictionalContact {
   std::optional<RestPose> begin_segment();
   void classify();
   bool resolve_impacts();
-  bool capture_returning_points();
+  bool hold_unresolved_hops();
   bool resolve_painleve();
   std::vector<std::pair<Vec3, bool>> resting_points() const;
   bool stop_landed_points();
@@ -89,12 +89,11 @@ class FrictionalContact {
   BodyLedger ledger_;
   std::vector<int> active_;                 // hull vertices on the wall and not leaving it
   std::vector<PointCondition> conditions_;  // their rules for this segment
-  std::vector<int> leaving_slowly_;
-  std::vector<int> at_rest_before_;  // the points at rest in the segment before (hull vertices)
-  std::vector<int>
-      sliding_before_;  // and those sliding         // in the band, leaving slower than the separation speed
-  ContactForces forces_;          // at the segment's start
-  std::vector<Vec3> warm_start_;  // forces_' forces, where the sweeps of the rates start
+  std::vector<int> leaving_slowly_;         // in the band, leaving slower than the separation speed
+  std::vector<int> at_rest_before_;         // the points at rest in the segment before (hull vertices)
+  std::vector<int> sliding_before_;         // and those sliding
+  ContactForces forces_;                    // at the segment's start
+  std::vector<Vec3> warm_start_;            // forces_' forces, where the sweeps of the rates start
   double step_end_ = -INFINITY;
   double event_ = INFINITY;
   bool started_ = false;

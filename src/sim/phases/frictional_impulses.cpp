@@ -1,5 +1,5 @@
-// The frictional contact phase's impulses (frictional_contact.hpp): impacts, Zeno's captures, the hold of
-// sticking points and Painlevé's impacts without collision.
+// The frictional contact phase's impulses (frictional_contact.hpp): impacts (Zeno's captures among them),
+// the stopping of points newly at rest and Painlevé's impacts without collision.
 #include <algorithm>
 #include <cmath>
 
@@ -10,19 +10,43 @@
 namespace repose::sim {
 
 // Points approaching the wall strike it (Stronge's E and Coulomb's μ; several at once by the multi-point law
-// with every point on the wall); a touch too slow to leave the band again is plastic. True if any did.
+// with every point on the wall). True if any did. The impact is plastic (E = 0) when too slow to leave the
+// band again: below the separation speed (a rebound that gravity alone would turn back within the band), or
+// a Zeno capture — a rebound E·u that the point's own normal acceleration a_n under the other points' forces
+// turns back within the band, (E·u)² ≤ 2·|a_n|·band. Such a rebound would start a cascade of ever smaller
+// impacts (a block rocking between two edges of its face, a polyhedron rolling across an edge) that ends, in
+// a finite time, with the point on the wall; the plastic impact ends it at once, pushing and in the cone, the
+// cascade's energy (below m·|a_n|·band) in the impact's loss.
 bool FrictionalContact::resolve_impacts() {
   Run& run = run_;
   std::vector<Vec3> arms;
+  std::vector<int> others;  // the points on the wall not approaching it
+  std::vector<PointCondition> other_conditions;
   double fastest = 0;
-  for (int k : active_) {
-    const Vec3 arm = run.q * run.particle.hull.vertices[static_cast<std::size_t>(k)];
+  Vec3 fastest_arm = Vec3::Zero();
+  for (std::size_t i = 0; i < active_.size(); ++i) {
+    const Vec3 arm = run.q * run.particle.hull.vertices[static_cast<std::size_t>(active_[i])];
     arms.push_back(arm);
-    fastest = std::max(fastest, -(velocity_ + omega_.cross(arm)).z());
+    const double approach = -(velocity_ + omega_.cross(arm)).z();
+    if (approach > fastest) fastest = approach, fastest_arm = arm;
+    if (approach <= run.tol.speed) others.push_back(active_[i]), other_conditions.push_back(conditions_[i]);
   }
   if (fastest <= run.tol.speed) return false;
   const double elastic = std::max(run.tol.separation_speed, run.params.restitution_threshold);
-  const ImpactLaw law{fastest > elastic ? run.params.restitution : 0.0, run.params.friction};
+  double restitution = fastest > elastic ? run.params.restitution : 0.0;
+  const double rebound = restitution * fastest;
+  if (rebound > 0 && rebound <= tol::kZenoReach * run.tol.separation_speed) {
+    const ContactForces f =
+        forces_at({run.com, velocity_, run.q, omega_}, others, other_conditions);  // the others' forces
+    const double a_n =
+        (f.acceleration + f.angular_acceleration.cross(fastest_arm) + omega_.cross(omega_.cross(fastest_arm)))
+            .z();
+    if (a_n < 0 && rebound * rebound <= 2 * -a_n * run.tol.frictional_band) {
+      restitution = 0;
+      ++run.record.account.zeno_captures;
+    }
+  }
+  const ImpactLaw law{restitution, run.params.friction};
   const Impact::Outcome out = Impact(run).resolve({velocity_, omega_}, arms, law, true);
   velocity_ = out.motion.velocity;
   omega_ = out.motion.omega;
@@ -121,65 +145,36 @@ void FrictionalContact::undo_drift() {
   run_.record.account.drift_corrections += before - kinetic_energy();
 }
 
-// Zeno's accumulation of impacts (a block rocking between two edges of its face, a polyhedron rolling across
-// an edge): a point in the band that leaves so slowly that the normal acceleration the other points give it
-// turns it back before it leaves the band (u_n² ≤ 2·|a_n|·band) would start a cascade of ever smaller impacts
-// that ends, in a finite time, with it on the wall. It is closed now: the least-norm normal impulses at it
-// and at the points on the wall that stop their normal motion, the cascade's sum (the kinetic energy this
-// takes, ½·u_nᵀ·G⁺·u_n with G the normal block of the Delassus matrix, is below m·g·band; recorded as an
-// impact). True if any point was closed.
-bool FrictionalContact::capture_returning_points() {
+// A point leaving the wall so slowly that the normal acceleration the other points give it turns it back
+// before it rises by the event tolerance (u_n² ≤ 2·|a_n|·event, 1e-12·L) makes a hop no event can resolve:
+// its return would be found at once, again and again. It is held on the wall: its normal velocity, and the
+// other points', undone by the least-norm change of velocity (a projection of motion below the engine's
+// resolution, like undo_drift's; its kinetic energy in drift_corrections), counted as a Zeno capture. A
+// slow leaving point that rises above the event tolerance hops, and its return is an impact
+// (resolve_impacts).
+bool FrictionalContact::hold_unresolved_hops() {
   Run& run = run_;
   const auto& verts = run.particle.hull.vertices;
-  const auto arm_of = [&](int k) { return Vec3(run.q * verts[static_cast<std::size_t>(k)]); };
-  const double height = tol::kPierceFloor * run.tol.event;
   std::vector<Vec3> arms;
-  double fastest = 0;
-  Vec3 fastest_point = Vec3::Zero();
   for (int k : leaving_slowly_) {
-    const Vec3 r = arm_of(k), u = velocity_ + omega_.cross(r);
+    const Vec3 r = run.q * verts[static_cast<std::size_t>(k)], u = velocity_ + omega_.cross(r);
     const double a =
         (forces_.acceleration + forces_.angular_acceleration.cross(r) + omega_.cross(omega_.cross(r))).z();
-    if (!(a < 0) || u.z() * u.z() > 2 * -a * height) continue;
-    arms.push_back(r);
-    if (u.z() > fastest) fastest = u.z(), fastest_point = r;
+    if (a < 0 && u.z() * u.z() <= 2 * -a * run.tol.event) arms.push_back(r);
   }
   if (arms.empty()) return false;
   ++run.record.account.zeno_captures;
-  for (int k : active_) arms.push_back(arm_of(k));
+  for (int k : active_) arms.push_back(run.q * verts[static_cast<std::size_t>(k)]);
   const Mat3 R = run.q.toRotationMatrix();
-  const Mat3 inertia = R * run.body.inertia * R.transpose();
-  const Mat3 inverse_inertia = inertia.inverse();
-  const double m = run.body.mass;
-  const std::size_t n = arms.size();
-  Eigen::MatrixXd G(n, n);
-  Eigen::VectorXd un(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec3 ai = arms[i].cross(Vec3::UnitZ());
-    un(static_cast<Eigen::Index>(i)) = (velocity_ + omega_.cross(arms[i])).z();
-    for (std::size_t j = 0; j < n; ++j)
-      G(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
-          1 / m + ai.dot(inverse_inertia * arms[j].cross(Vec3::UnitZ()));
-  }
-  const Eigen::VectorXd P = G.completeOrthogonalDecomposition().solve(-un);
-  ImpactRecord record;
-  record.t = run.t;
-  record.points = static_cast<int>(n);
-  record.point = run.com + fastest_point;
-  const Vec3 before = velocity_ + omega_.cross(fastest_point);
-  record.normal_speed_before = before.z();
-  record.tangential_speed_before = before.head<2>().norm();
-  record.energy_before = sim::kinetic_energy(m, inertia, {velocity_, omega_}) + run.potential_energy();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec3 p = P(static_cast<Eigen::Index>(i)) * Vec3::UnitZ();
-    velocity_ += p / m;
+  const Mat3 inverse_inertia = R * run.body.inertia.inverse() * R.transpose();
+  const double before = kinetic_energy();
+  const Eigen::VectorXd P = stopping_impulses(arms, false);
+  for (std::size_t i = 0; i < arms.size(); ++i) {
+    const Vec3 p = P.segment<3>(3 * static_cast<Eigen::Index>(i));
+    velocity_ += p / run.body.mass;
     omega_ += inverse_inertia * arms[i].cross(p);
   }
-  const Vec3 after = velocity_ + omega_.cross(fastest_point);
-  record.normal_speed_after = after.z();
-  record.tangential_speed_after = after.head<2>().norm();
-  record.energy_after = sim::kinetic_energy(m, inertia, {velocity_, omega_}) + run.potential_energy();
-  run.record.impacts.push_back(record);
+  run.record.account.drift_corrections += before - kinetic_energy();
   return true;
 }
 
@@ -235,6 +230,7 @@ bool FrictionalContact::resolve_painleve() {
     const double b = k1 - k0 - a;
     scale = b > 0 ? std::clamp(-a / (2 * b), 0.0, 1.0) : 0.0;
   }
+  const Vec3 velocity_before = velocity_;
   Vec3 centre = Vec3::Zero();
   double total = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -252,6 +248,7 @@ bool FrictionalContact::resolve_painleve() {
   record.normal_speed_after = after.z();
   record.tangential_speed_after = after.head<2>().norm();
   record.energy_after = sim::kinetic_energy(m, inertia, {velocity_, omega_}) + run.potential_energy();
+  record.impulse = m * (velocity_ - velocity_before);
   run.record.impacts.push_back(record);
   return true;
 }

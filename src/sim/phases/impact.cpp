@@ -56,6 +56,7 @@ Impact::Outcome Impact::resolve(const Motion& motion, const std::vector<Vec3>& a
     record.t = run.t;
     record.points = static_cast<int>(approaching_.size());
     record.energy_before = sim::kinetic_energy(body.mass, inertia, m) + potential;
+    const Vec3 velocity_before = m.velocity;
     const std::size_t points = every_point ? arms_.size() : approaching_.size();
     if (points > 1 && std::isfinite(law.friction)) {
       // Several points with finite friction: Coulomb at each of them (multi_impact.hpp), over every point on
@@ -97,6 +98,7 @@ Impact::Outcome Impact::resolve(const Motion& motion, const std::vector<Vec3>& a
       m = out.after;
     }
     record.energy_after = sim::kinetic_energy(body.mass, inertia, m) + potential;
+    record.impulse = body.mass * (m.velocity - velocity_before);
     impacts.push_back(record);
   }
   // A rebound: every point on the wall leaves it fast enough to rise above the touching tolerance
