@@ -51,6 +51,16 @@ module repose
     real(c_double) :: max_penetration, lift, energy_start, energy_end
   end type
 
+  ! Finite friction: the frictional contact phase's energy ledger and every fallback counted by kind
+  ! (repose.h's repose_friction_account; all zero with friction infinite).
+  type, bind(c), public :: repose_friction_account
+    real(c_double) :: friction_work, damping_work, normal_work, drift_corrections, stopping_losses
+    real(c_double) :: repositioning, rest_losses, paper_phase_losses, frictionless_motion, impact_losses
+    integer(c_int) :: handovers_stalled, handovers_timed_out, bounded_rounds
+    integer(c_long_long) :: pyramid_forces, unsolved_forces, unresolved_forces
+    integer(c_int) :: zeno_captures, painleve, tip_offs
+  end type
+
   type, bind(c), public :: repose_pose
     integer(c_int) :: face
     real(c_double) :: down_normal_body(3), com_height, barrier, probability
@@ -61,7 +71,7 @@ module repose
     repose_params_set_number, repose_params_set_text, repose_params_get_number, repose_settler_new, &
     repose_settler_free, repose_settler_step, repose_settler_advance_to, repose_settler_run, &
     repose_settler_state, repose_settler_status, repose_settler_contact, repose_settler_contact_points, &
-    repose_settler_result, repose_settle, repose_poses_new, &
+    repose_settler_result, repose_settler_friction_account, repose_settle, repose_poses_new, &
     repose_poses_free, repose_poses_count, repose_poses_get, repose_poses_of_face
 
   interface
@@ -197,6 +207,13 @@ module repose
       type(c_ptr), value :: settler
       type(repose_result), intent(out) :: result
       integer(c_int) :: repose_settler_result
+    end function
+    function repose_settler_friction_account(settler, account) &
+        bind(c, name="repose_settler_friction_account")
+      import :: c_int, c_ptr, repose_friction_account
+      type(c_ptr), value :: settler
+      type(repose_friction_account), intent(out) :: account
+      integer(c_int) :: repose_settler_friction_account
     end function
     function repose_settle(particle, params, start, floor_height, result) bind(c, name="repose_settle")
       import :: c_int, c_double, c_ptr, repose_state, repose_result

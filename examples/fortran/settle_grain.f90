@@ -16,10 +16,11 @@ program settle_grain
   type(repose_state) :: start, now
   type(repose_result) :: result
   type(repose_pose) :: pose
+  type(repose_friction_account) :: account
   type(repose_particle_info) :: info
   integer(c_int) :: running, pose_index
   integer :: steps
-  real(c_double) :: t, half(3)
+  real(c_double) :: t, half(3), residual, mgl
 
   ! The brick's corners in its mesh frame (metres), not centred: repose's body frame has its origin at the
   ! centre of mass and these axes.
@@ -50,6 +51,7 @@ program settle_grain
   end do
   call check(repose_settler_state(settler, now, t), "state")
   call check(repose_settler_result(settler, result), "result")
+  call check(repose_settler_friction_account(settler, account), "friction account")
   call check(repose_poses_new(particle, -1d0, poses), "poses")
   call check(repose_poses_of_face(poses, result%rest_face, pose_index), "pose of face")
   call check(repose_poses_get(poses, pose_index, pose), "pose")
@@ -70,6 +72,15 @@ program settle_grain
   if (minval(abs(result%position(3) - 0.01d0 - half)) > 1d-12) call fail("centre of mass not half an edge up")
   if (abs(pose%com_height - (result%position(3) - 0.01d0)) > 1d-12) call fail("catalogue height differs")
   if (any(now%position /= result%position)) call fail("state and result disagree")
+  ! The energy ledger closes (issue 48: to 1e-6 m g L, L = 3 cm the brick's longest edge): the change of
+  ! energy is what its terms took or gave.
+  residual = result%energy_end - result%energy_start + account%impact_losses + account%friction_work + &
+             account%damping_work - account%normal_work + account%stopping_losses + account%drift_corrections - &
+             account%repositioning + account%rest_losses + account%paper_phase_losses + account%frictionless_motion
+  mgl = info%mass * 9.81d0 * 0.03d0
+  print '(a, es10.3, a, i0, a, i0)', 'energy ledger residual ', residual / mgl, ' m g L; Zeno captures ', &
+        account%zeno_captures, ', hand-overs ', account%handovers_stalled + account%handovers_timed_out
+  if (abs(residual) > 1d-6 * mgl) call fail("the energy ledger does not close")
 
   if (command_argument_count() >= 1) call compare_with_reference()
 
@@ -100,19 +111,25 @@ contains
   ! orientation must be identical; the position within 1e-15 m (the C API adds the caller's frame back).
   subroutine compare_with_reference()
     character(len=4096) :: path
-    integer :: unit, status, face, ref_steps, bounces
-    real(c_double) :: time, position(3), orientation(4)
+    integer :: unit, status, face, ref_steps, bounces, zeno, handovers, painleve
+    real(c_double) :: time, position(3), orientation(4), friction_work, normal_work, drift, repositioning
     call get_command_argument(1, path)
     open(newunit=unit, file=trim(path), status='old', action='read')
     read(unit, *) status, face, ref_steps, bounces
     read(unit, *) time, position, orientation
+    read(unit, *) friction_work, normal_work, drift, repositioning, zeno, handovers, painleve
     close(unit)
+    if (friction_work /= account%friction_work .or. normal_work /= account%normal_work .or. &
+        drift /= account%drift_corrections .or. repositioning /= account%repositioning .or. &
+        zeno /= account%zeno_captures .or. handovers /= account%handovers_stalled + account%handovers_timed_out &
+        .or. painleve /= account%painleve) call fail("the friction account differs from the C++ API's")
     if (status /= result%status .or. face /= result%rest_face .or. ref_steps /= result%steps .or. &
         bounces /= result%bounces) call fail("status, face, steps or bounces differ from the C++ API's")
     if (time /= result%time .or. any(orientation /= result%orientation)) &
       call fail("time or orientation differ from the C++ API's")
     if (maxval(abs(position - result%position)) > 1d-15) call fail("position differs from the C++ API's")
-    print '(a)', 'the same as the C++ API: status, face, steps, bounces, time and orientation identical'
+    print '(a)', 'the same as the C++ API: status, face, steps, bounces, time, orientation and the friction &
+                 &account identical'
   end subroutine
 
 end program settle_grain

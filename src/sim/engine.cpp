@@ -26,19 +26,8 @@ Engine::Engine(const Particle& particle, const SettleParams& params, const Quat&
     start_contact(Vec3(0, 0, -p.drop_speed), Vec3::Zero(), false);
 }
 
-// The transition table. Each phase's step reports the event that ends it, if any:
-//   flight  ─ touch ─▶ contact   the paper's touch (§2.1): translation stops, the rotation starts from rest
-//   flight  ─ touch ─▶ impact    rigid impacts (a toss, E > 0 or finite friction): resolved at once, then
-//     impact ─▶ flight            every point on the wall leaves it (a rebound)
-//     impact ─▶ contact           otherwise, friction infinite: the hand-over, with the angular momentum the
-//                                 impacts left
-//     impact ─▶ frictional contact   otherwise, friction finite: with the whole motion the impacts left
-//   contact ─ rest ─▶ rest       the touching points hold the centre of mass over a stable hull face
-//   frictional contact ─ rest ─▶ rest   nothing moves or accelerates, over a stable hull face
-//   frictional contact ─▶ contact       still moving after kFrictionalTime·τ, or stalled (events found again
-//                                       at once, FrictionalContact::stalled): the paper's phase ends it
-//   flight, contact ─ limit ─▶ stopped   at the time limit or the step limit, before the next step
-// (Inside the contact phase the support switches, and an edge balance is tipped off, without a transition.)
+// The transition table of docs/method.md ("Phases"), row by row: each phase's step reports the event that
+// ends it, if any, and the branch below for that phase takes the transition.
 bool Engine::step() {
   if (status() != Status::running) return false;
   if (run_.t >= run_.tol.max_time) {

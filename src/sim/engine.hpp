@@ -1,13 +1,7 @@
-// Internal: the settling engine — a state machine over named phases (docs/method.md, "Phases").
-//
-//   flight ──touch──▶ impact ──rebound──▶ flight
-//      │                 ├──hand-over──▶ contact ──rest──▶ rest                (friction infinite: the
-//      paper's) │                 └──hand-over──▶ frictional contact ──rest──▶ rest     (finite friction)
-//      └──touch (the paper's: translation stops)──▶ contact
-//   any phase ──time or step limit──▶ stopped
-//
-// The engine holds what every phase shares (Run) and the current phase; Engine::step() holds every
-// transition. A phase owns its own state and lives in its own file (phases/).
+// Internal: the settling engine — a state machine over named phases. Its transitions are drawn once, with
+// their events, in docs/method.md ("Phases"); Engine::step() holds every one of them. The engine holds
+// what every phase shares (Run) and the current phase; a phase owns its own state and lives in its own file
+// (phases/).
 #pragma once
 
 #include <variant>

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <vector>
 
-#include "dynamics.hpp"
+#include "body/dynamics.hpp"
 #include "repose/sim/settle.hpp"
 #include "tolerances.hpp"
 

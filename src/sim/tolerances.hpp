@@ -2,9 +2,13 @@
 //
 // A run's tolerances are built once (make_tolerances) from the particle's length L, the time scale
 // τ = sqrt(L/g) and the parameters, so that they mean the same thing for a 50 µm grain and a boulder. The
-// constants below are the relative factors they are built from, and the few dimensionless ones of the
-// geometric tests and the impact law. No tolerance literal appears anywhere else in src/sim.
+// constants below are the relative factors they are built from, the dimensionless ones of the geometric
+// tests and the impact law, and the solvers' constants and loop bounds. No tolerance literal appears
+// anywhere else in src/sim: tests/sim/tolerance_table_test.cpp fails on one.
 #pragma once
+
+#include <cstddef>
+#include <limits>
 
 #include "repose/model/params.hpp"
 #include "repose/model/particle.hpp"
@@ -101,6 +105,151 @@ inline constexpr double kSweepChange = 1e-16;
 inline constexpr double kStopFraction = 1e-9;
 /// A quaternion shorter than this is no orientation.
 inline constexpr double kQuaternionNorm = 1e-12;
+
+// ---- solver constants and loop bounds (dimensionless; a bound keeps a loop finite, and reaching one is a
+// counted fallback where the result could differ)
+// The event locator (events.hpp). Events are located to kEventResolution of the step they happen in: 2^-44
+// of a step of at most 0.2·sqrt(L/g) is below 1e-14·sqrt(L/g), far below a motion of 1e-9·L (the touching
+// tolerance) at any speed the particle can have, and well above the round-off of the step's time. The
+// paper's fixed step integrates each trial instant afresh (no dense output): its events are bracketed by
+// kPaperHalvings halvings of the step (2^-48), the resolution its pinned reference runs are defined by.
+// Bounds: halvings of one bracket, intervals examined by a search for the first instant (only a tangency
+// within round-off could reach it), and the depth of halvings of an interval (2^-256 of any step is below
+// the smallest spacing of times), which bounds the search's stack.
+inline constexpr double kEventResolution = 0x1p-44;
+inline constexpr int kPaperHalvings = 48;
+inline constexpr int kMaxHalvings = 48;
+inline constexpr int kMaxIntervals = 4096;
+inline constexpr int kMaxDepth = 256;
+/// An adaptive step (contact or frictional phase) is searched for events at this many evenly spaced instants
+/// of its dense output, so a vertex that dips below the wall and back up inside one step is still caught.
+inline constexpr int kEventSamples = 8;
+/// The minimum of a vertex's cubic Hermite height between two samples: its derivative's root, bisected this
+/// many times (to round-off of the interval).
+inline constexpr int kHermiteBisections = 60;
+/// The contact phase: decisions are also checked at every kDecisionStride-th event sample instant; a support
+/// chosen from several touching points is chosen again at once at most kRedecisions times.
+inline constexpr std::size_t kDecisionStride = 2;
+inline constexpr int kRedecisions = 2;
+/// A spinning flight's touch search keeps this many samples of its candidates' heights.
+inline constexpr std::size_t kFlightCachedSamples = 4;
+/// Contact's band of vertex ids is sorted through a bitset from this many ids on (below, a comparison sort is
+/// cheaper; above, a tenth of a 10,000-vertex grain's settle went to std::sort).
+inline constexpr std::size_t kBitsetSortFrom = 64;
+
+// The impact laws (rigid_impact.cpp, multi_impact.cpp, impact.cpp).
+/// Several points on the wall may each need an impact (the first leaves another approaching): bounded.
+inline constexpr int kImpactRounds = 16;
+/// A run's rebounds are bounded: after this many impacts every touch hands over to the contact phase. A ball
+/// with E = 0.99 bounces ~1,300 times before its rebounds fall below the touching tolerance; the bound stops
+/// a chatter of ever-shorter flights (a particle with E near 1 rattling on its facets) from taking the run's
+/// whole step budget.
+inline constexpr std::size_t kMaxImpacts = 10000;
+/// The one-point law's integration over the impulse: at most kImpactMaxSteps steps (reaching it falls back to
+/// the frictionless law, ImpactOutcome::fallback, counted; no impact of tests/sim's 10,000 random and 10,000
+/// grazing ones does). While the point slides its direction may turn: RK4 steps of at most
+/// 1/kImpactStepsPerImpulse of the frictionless compression impulse (an impact not ended after
+/// kImpactFineSteps steps is a jam: steps of the impulse that stops its slip), each turning the slip by at
+/// most kImpactTurnPerStep rad; in a plane the direction is fixed and every step is exact. Measured against
+/// integrations 30 times finer: 1e-9 of the impulse (median), 2e-5 (99th percentile) over random impacts.
+inline constexpr int kImpactMaxSteps = 100000;
+inline constexpr int kImpactStepsPerImpulse = 64;
+inline constexpr int kImpactFineSteps = 2048;
+inline constexpr double kImpactTurnPerStep = 1.0 / 32;
+/// Near a slip of zero: steps that change the slip by at most kImpactSlipChangePerStep of itself; a jump to
+/// the predicted stop once the turn over it is below kImpactStopTurn rad, or the stop is within
+/// kImpactStopReach of the impact's impulse scale; a slip below kImpactStoppedSlip of the approach speed has
+/// stopped. A restitution that ends short of its energy target is continued; steps below
+/// kImpactNegligibleStep of the normal impulse are round-off, and the target is met.
+inline constexpr double kImpactSlipChangePerStep = 0.25;
+inline constexpr double kImpactStopTurn = 1e-3;
+inline constexpr double kImpactStopReach = 1e-6;
+inline constexpr double kImpactStoppedSlip = 1e-6;
+inline constexpr double kImpactNegligibleStep = 1e-15;
+/// The direction in which sliding starts again is bracketed to round-off in far fewer halvings than this.
+inline constexpr int kResumeHalvings = 200;
+/// Gauss–Seidel sweeps of impulse_centre (several points without slip: their impulses' centre).
+inline constexpr int kImpulseCentreSweeps = 10000;
+/// Halvings of the restitution's normal impulses when Poisson's rule with friction would raise the energy
+/// (after the last, none: the plastic impact alone); the kinetic energy's relative round-off, beyond which a
+/// compression that adds energy has no exact solution's property.
+inline constexpr int kRestitutionHalvings = 60;
+inline constexpr double kKineticRoundOff = 1e-12;
+
+// The contact forces (contact_problem.cpp, contact_newton.cpp, contact_pivoting.cpp, lemke.cpp,
+// contact_forces.cpp, sliding_face.cpp).
+/// Block Gauss–Seidel: a face's 4 to 40 points converge in tens of sweeps; the bound keeps an ill-conditioned
+/// set (many nearly coincident points) finite. A sweep that changes no point's value by more than
+/// kContactConverged of the scale has converged; one that changes the values by no less than the one before,
+/// within kContactRoundOff of the terms they are summed from (64 ulps), has met round-off. The sweeps have
+/// diverged once a value exceeds kContactDiverged times the scale (with sliding friction and μ above about 1
+/// they need not contract).
+inline constexpr int kContactSweeps = 5000;
+inline constexpr double kContactConverged = 1e-14;
+inline constexpr double kContactRoundOff = 64 * std::numeric_limits<double>::epsilon();
+inline constexpr double kContactDiverged = 1e12;
+/// Newton's method polishes the reactions where after kSweepsBeforeNewton sweeps they still contract by less
+/// than kSlowSweep a sweep (and again after twice as many more each time it did not end them): most problems
+/// converge within 30 sweeps, but an edge at the limit of its friction cone can take thousands. Its step
+/// costs O((3n)³): beyond kMaxPolishedPoints points the sweeps alone are cheaper. Lemke's reactions polished
+/// by it are a solution of the exact problem where a sweep from them changes no value by more than
+/// kPolished of the scale (else the pyramid's answer is kept, counted).
+inline constexpr int kSweepsBeforeNewton = 10;
+inline constexpr double kSlowSweep = 0.2;
+inline constexpr std::size_t kMaxPolishedPoints = 8;
+inline constexpr double kPolished = 1e-10;
+/// Newton's steps (quadratic near the solution; the bound keeps a problem without or with several solutions
+/// finite), the halvings of its line search, and the points up to which its matrices live on the stack (a
+/// face's corners, an edge: no allocation per step).
+inline constexpr int kNewtonSteps = 30;
+inline constexpr int kNewtonHalvings = 40;
+inline constexpr int kNewtonStackPoints = 8;
+/// A point at rest's force on its cone: Newton's steps on the secular equation (converges in a few; the
+/// bound keeps it finite), and its bracket's doublings or halvings (2^±1100 covers every double).
+inline constexpr int kCapSearchSteps = 200;
+inline constexpr int kDoublingsOfADouble = 1100;
+/// A floor for a scale that divides (the smallest scale of any problem here is far above it).
+inline constexpr double kTinyScale = 1e-300;
+/// The pivoting fallback's friction cone at points at rest: a pyramid of this many edges (the inscribed
+/// polygon's force falls short of the cone by at most 1 − cos(π/12) = 3.4 %). Lemke's method ends within a
+/// few pivots per unknown: kLemkePivotsPerUnknown·n + kLemkePivotsBase bounds a degenerate problem.
+inline constexpr int kPyramidEdges = 12;
+inline constexpr int kLemkePivotsPerUnknown = 50;
+inline constexpr int kLemkePivotsBase = 100;
+/// Lemke's tableau: the largest natural residual |min(z_i, w_i)| accepted relative to its vector's scale
+/// (round-off of a well-posed tableau is ~1e-14; a pivot sequence that went astray leaves order one); ratios
+/// within kLemkeTie of each other are a tie; entries below kLemkeTiny of the scale are zero.
+inline constexpr double kLemkeResidual = 1e-9;
+inline constexpr double kLemkeTie = 1e-12;
+inline constexpr double kLemkeTiny = 1e-12;
+/// Sliding points whose problem no solver reached are decided by enumerating the complementary sets of their
+/// normal forces' LCP (2^n small solves) up to this many points (beyond, the failure is counted); a set's
+/// forces and accelerations are non-negative within kEnumerationSlack of the scale; a point's value below
+/// kModeTiny of the scale is none (its mode: stick, not slide).
+inline constexpr std::size_t kMaxEnumeratedPoints = 10;
+inline constexpr double kEnumerationSlack = 1e-12;
+inline constexpr double kModeTiny = 1e-12;
+/// A sliding face: its points hold no face where the smallest singular value of their scaled coordinates is
+/// below kCollinearFace of the largest (collinear: an edge). A starting slip's direction: kDirectionRounds
+/// fixed-point rounds, else a scan at kDirectionSamples angles (no two roots of a face's slip equation were
+/// closer than 2π/40 in 1,500 random faces) and kDirectionBisections bisections of each sign change (to
+/// round-off in the angle); a slip acceleration below kStillSlip·g has no direction, and a direction within
+/// kStillSlip (relative) of the acceleration's is it.
+inline constexpr double kCollinearFace = 1e-6;
+inline constexpr int kDirectionRounds = 20;
+inline constexpr int kDirectionSamples = 72;
+inline constexpr int kDirectionBisections = 60;
+inline constexpr double kStillSlip = 1e-12;
+
+// The frictional contact phase (frictional_contact.cpp).
+/// Impacts and impacts without collision at one instant: each round leaves no point approaching the wall, so
+/// a few suffice; the bound keeps a degenerate set finite (counted: bounded_rounds).
+inline constexpr int kSegmentRounds = 8;
+/// Segments shorter than kStallTime·τ, kStalls of them in a row, are a stall (handed over, counted).
+inline constexpr double kStallTime = 1e-12;
+inline constexpr int kStalls = 8;
+/// Balances tipped off in one phase (each leaves a face; a bound, never reached in the tests).
+inline constexpr int kTipOffs = 8;
 }  // namespace tol
 
 /// One run's tolerances and scales, built from L, τ and the parameters.

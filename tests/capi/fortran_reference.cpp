@@ -44,5 +44,9 @@ int main(int argc, char** argv) {
   std::fprintf(out, "%d %d %ld %d\n", static_cast<int>(r.status), r.rest_face, r.steps, r.bounces);
   std::fprintf(out, "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", r.time, p.x(), p.y(), p.z(),
                r.orientation.w(), r.orientation.x(), r.orientation.y(), r.orientation.z());
+  // The frictional ledger's terms and counts, as repose_settler_friction_account gives them.
+  const repose::FrictionalAccount f = r.frictional.value_or(repose::FrictionalAccount{});
+  std::fprintf(out, "%.17g %.17g %.17g %.17g %d %d %d\n", r.friction_work, f.normal_work, f.drift_corrections,
+               f.repositioning, f.zeno_captures, f.handovers_stalled + f.handovers_timed_out, r.painleve);
   return std::fclose(out) == 0 ? 0 : 2;
 }

@@ -10,7 +10,7 @@ Contact::Contact(Run& run) : run_(run) {
   z_.resize(n);
   in_contact_.resize(n);
   walk_visited_.resize(n);
-  id_bits_.resize((n + 63) / 64);
+  id_bits_.resize((n + kWordBits - 1) / kWordBits);
   if (run.adaptive) integrator_.emplace(run.body, run.tol.length, run.params.tolerance, run.tol.dt);
 }
 

@@ -22,17 +22,21 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <span>
 #include <vector>
 
-#include "../contact.hpp"
-#include "../impact_support.hpp"
-#include "../rotation_integrator.hpp"
+#include "../impact/impact_support.hpp"
+#include "../integrate/rotation_integrator.hpp"
 #include "../run.hpp"
+#include "../wall/contact.hpp"
 #include "rest.hpp"
 
 namespace repose::sim {
+
+// The bits of a word of Contact's bitset sort (contact_walks.cpp).
+inline constexpr std::size_t kWordBits = std::numeric_limits<std::uint64_t>::digits;
 
 /// A pose about the current support: the orientation and the centre of mass it puts where.
 struct Pose {

@@ -8,18 +8,10 @@
 #include <tuple>
 #include <utility>
 
-#include "../events.hpp"
+#include "../events/events.hpp"
 #include "contact.hpp"
 
 namespace repose::sim {
-
-namespace {
-// The adaptive step is searched for events at this many evenly spaced instants of its dense output, so a
-// vertex that dips below the wall and back up inside one step is still caught.
-constexpr int kEventSamples = 8;
-// A support chosen from several touching points is chosen again at once, at most this many times.
-constexpr int kRedecisions = 2;
-}  // namespace
 
 // A bound of the angle the particle can turn in time h from now about the current support, from energy:
 // kinetic energy K grows at most by the potential energy the centre of mass loses, m·g·r_c per radian turned
@@ -118,7 +110,8 @@ void Contact::adaptive_step() {
   // it leaves: the choice the paper's fixed step makes one step later, here at dt → 0. (An impact can switch
   // to a line whose motion then lets one of its points lift.)
   for (int again = 0;
-       again < kRedecisions && !run.smooth && out == Outcome::new_support && touching_.size() >= 2; ++again) {
+       again < tol::kRedecisions && !run.smooth && out == Outcome::new_support && touching_.size() >= 2;
+       ++again) {
     out = update(rot_.omega, rot_.omega.cross(run.com - support_.world));
     if (out == Outcome::rest) return;
   }
@@ -164,19 +157,19 @@ void Contact::begin_adaptive_step() {
     }
   }
   // The dense output at evenly spaced instants: the first at which an event holds brackets it.
-  std::array<double, kEventSamples + 1> times;
-  for (int i = 0; i <= kEventSamples; ++i)
-    times[i] = i == kEventSamples ? t1 : t0 + (t1 - t0) * i / kEventSamples;
+  std::array<double, tol::kEventSamples + 1> times;
+  for (int i = 0; i <= tol::kEventSamples; ++i)
+    times[i] = i == tol::kEventSamples ? t1 : t0 + (t1 - t0) * i / tol::kEventSamples;
   int first = -1;
   EventFlags at_first;
   if (!packed.offset.empty())
-    for (int i = 1; i <= kEventSamples && first < 0; ++i)
+    for (int i = 1; i <= tol::kEventSamples && first < 0; ++i)
       if ((at_first = adaptive_event_at(integrator_->orientation_at(times[i]))).any) first = i;
   step.end = t1;
   step.event = first > 0;
   step.band_entered = false;
   if (!step.event) {
-    locate_decision_change(t0, t1, std::span(times).subspan(1, kEventSamples - 1));
+    locate_decision_change(t0, t1, std::span(times).subspan(1, tol::kEventSamples - 1));
     return;
   }
   const double before_event = locate_step_event(times[first - 1], times[first], at_first);
@@ -190,7 +183,7 @@ void Contact::begin_adaptive_step() {
 // passed. Returns the bracket's lower end, the last instant known to be before the event.
 double Contact::locate_step_event(double lo, double hi, const EventFlags& at_hi) {
   EventSearch search;
-  search.resolution = (hi - lo) * (kEventResolution * kEventSamples);  // the bracket is 1/8 of the step
+  search.resolution = (hi - lo) * (kEventResolution * tol::kEventSamples);  // the bracket is 1/8 of the step
   search.max_halvings = kMaxHalvings;
   search.hi_holds_known = true;
   // The events at the bracket's upper end: at hi, or at the last instant tested at which one held.

@@ -7,16 +7,11 @@
 #include <span>
 #include <vector>
 
-#include "../events.hpp"
-#include "../stability.hpp"
+#include "../events/events.hpp"
+#include "../wall/stability.hpp"
 #include "contact.hpp"
 
 namespace repose::sim {
-
-namespace {
-// Contact decisions are also checked at every kDecisionStride-th of a step's event sample instants.
-constexpr std::size_t kDecisionStride = 2;
-}  // namespace
 
 // Between membership events the decisions change continuously with the pose (the footprints and the centre
 // of mass move), so each is a root of its own. (A point reaching the wall is a touch event of its own.)
@@ -128,7 +123,7 @@ void Contact::locate_decision_change(double t0, double t_end, std::span<const do
   // step (the stability test passing for a moment) is still seen; then its end.
   double lo = t0, hi = t_end;
   bool changed = false;
-  for (std::size_t i = kDecisionStride - 1; i < inner.size(); i += kDecisionStride) {
+  for (std::size_t i = tol::kDecisionStride - 1; i < inner.size(); i += tol::kDecisionStride) {
     const double ts = inner[i];
     if (ts >= t_end) break;
     if (differs(ts)) {

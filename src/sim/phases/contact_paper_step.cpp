@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "../events.hpp"
+#include "../events/events.hpp"
 #include "contact.hpp"
 
 namespace repose::sim {

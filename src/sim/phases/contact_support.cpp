@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "../stability.hpp"
+#include "../wall/stability.hpp"
 #include "contact.hpp"
 
 namespace repose::sim {

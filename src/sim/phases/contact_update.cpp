@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <utility>
 
-#include "../stability.hpp"
+#include "../wall/stability.hpp"
 #include "contact.hpp"
 
 namespace repose::sim {

@@ -52,20 +52,22 @@ bool Contact::band_matches_walk(double level, const std::vector<int>& picked) {
 // hull's vertices and read back in order: linear in the set plus its span/64 words, where a comparison sort
 // costs ~n·log n (a tenth of a 10,000-vertex grain's settle went to std::sort).
 void Contact::sort_vertex_ids(std::vector<int>& ids) {
-  if (ids.size() < 64) {
+  if (ids.size() < tol::kBitsetSortFrom) {
     std::sort(ids.begin(), ids.end());
     return;
   }
   int lo = ids.front(), hi = ids.front();
   for (int k : ids) {
-    id_bits_[static_cast<std::size_t>(k) >> 6] |= std::uint64_t{1} << (k & 63);
+    id_bits_[static_cast<std::size_t>(k) / kWordBits] |= std::uint64_t{1}
+                                                         << (static_cast<std::size_t>(k) % kWordBits);
     lo = std::min(lo, k);
     hi = std::max(hi, k);
   }
   ids.clear();
-  for (std::size_t w = static_cast<std::size_t>(lo) >> 6; w <= static_cast<std::size_t>(hi) >> 6; ++w) {
+  for (std::size_t w = static_cast<std::size_t>(lo) / kWordBits;
+       w <= static_cast<std::size_t>(hi) / kWordBits; ++w) {
     for (std::uint64_t bits = id_bits_[w]; bits != 0; bits &= bits - 1)
-      ids.push_back(static_cast<int>(64 * w) + std::countr_zero(bits));
+      ids.push_back(static_cast<int>(kWordBits * w) + std::countr_zero(bits));
     id_bits_[w] = 0;
   }
 }

@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-#include "../rotation_integrator.hpp"
+#include "../integrate/rotation_integrator.hpp"
 #include "../run.hpp"
 
 namespace repose::sim {
@@ -67,10 +67,9 @@ class Flight {
   double inertia_min_ = 0;  // the body's smallest principal moment (the touch search's bound)
   // The touch search's working memory, kept from search to search: the hull vertices that may reach the
   // wall in the step, and a few cached samples of their heights and vertical speeds.
-  static constexpr std::size_t kCachedSamples = 4;
   std::vector<std::size_t> candidates_;
   std::vector<double> samples_;
-  std::array<double, kCachedSamples> sample_time_{};
+  std::array<double, tol::kFlightCachedSamples> sample_time_{};
 };
 
 }  // namespace repose::sim

@@ -12,7 +12,7 @@
 #include <tuple>
 #include <utility>
 
-#include "../events.hpp"
+#include "../events/events.hpp"
 #include "flight.hpp"
 
 namespace repose::sim {
@@ -61,16 +61,16 @@ double Flight::locate_touch(double a, double b) {
   // kept with the intervals still to examine. The last few are cached, since the search examines an
   // interval right after halving its parent, whose ends it shares.
   const std::size_t n = candidates_.size();
-  samples_.resize(kCachedSamples * 2 * n);
+  samples_.resize(tol::kFlightCachedSamples * 2 * n);
   sample_time_.fill(NAN);  // a sample describes this flight step only
   // Slots are written in turn, never the one holding the other end of the interval being tested.
   std::size_t cursor = 0;
   // The slot of the sample at instant s: heights at [0, n), vertical speeds at [n, 2n).
   const auto sample = [&](double s, std::size_t keep) {
-    for (std::size_t i = 0; i < kCachedSamples; ++i)
+    for (std::size_t i = 0; i < tol::kFlightCachedSamples; ++i)
       if (sample_time_[i] == s) return i;
-    std::size_t slot = cursor++ % kCachedSamples;
-    if (slot == keep) slot = cursor++ % kCachedSamples;
+    std::size_t slot = cursor++ % tol::kFlightCachedSamples;
+    if (slot == keep) slot = cursor++ % tol::kFlightCachedSamples;
     double* out = &samples_[slot * 2 * n];
     const Rotation st = rotation_->state_at(s);
     const auto c = centre_at(s);
@@ -79,11 +79,11 @@ double Flight::locate_touch(double a, double b) {
     return slot;
   };
   const auto below = [&](double s) {
-    const double* z = &samples_[sample(s, kCachedSamples) * 2 * n];
+    const double* z = &samples_[sample(s, tol::kFlightCachedSamples) * 2 * n];
     return *std::min_element(z, z + n) < 0;
   };
   const auto clear = [&](double tl, double tr) {
-    const std::size_t left = sample(tl, kCachedSamples);
+    const std::size_t left = sample(tl, tol::kFlightCachedSamples);
     const double* l = &samples_[left * 2 * n];
     const double* r = &samples_[sample(tr, left) * 2 * n];
     for (std::size_t k = 0; k < n; ++k)

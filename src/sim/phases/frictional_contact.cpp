@@ -10,15 +10,6 @@
 namespace repose::sim {
 
 namespace {
-// Impacts and impacts without collision at one instant: each round leaves no point approaching the wall, so
-// a few suffice; the bound keeps a degenerate set finite.
-constexpr int kSegmentRounds = 8;
-// Segments shorter than this (× τ) in a row, kStalls of them, are a stall (FrictionalContact::step).
-constexpr double kStallTime = 1e-12;
-constexpr int kStalls = 8;
-// Balances tipped off in one phase (each leaves a face; a bound, never reached in the tests).
-constexpr int kTipOffs = 8;
-
 Motion motion_of(const BodyState& s) { return {s.velocity, s.omega}; }
 // The contact type by the number of points on the wall (flight when none).
 ContactType type_of(int points) {
@@ -44,7 +35,7 @@ double FrictionalContact::kinetic_energy() const {
   return sim::kinetic_energy(run_.body.mass, R * run_.body.inertia * R.transpose(), {velocity_, omega_});
 }
 
-bool FrictionalContact::stalled() const { return stalls_ >= kStalls; }
+bool FrictionalContact::stalled() const { return stalls_ >= tol::kStalls; }
 
 std::pair<int, int> FrictionalContact::points_before_start() const {
   const Run& run = run_;
@@ -92,9 +83,9 @@ std::optional<RestPose> FrictionalContact::step() {
   move_to(end);
   if (end == event_) step_end_ = end;  // a new segment starts at the event
   // Segments that end at once, one after another (a slip that stops as soon as it is taken as sliding, an
-  // event found again at once), are bounded: after kStalls of them the engine hands the run to the paper's
-  // phase (stalled(), counted).
-  stalls_ = end - segment_start_ <= kStallTime * run.tol.time_scale ? stalls_ + 1 : 0;
+  // event found again at once), are bounded: after tol::kStalls of them the engine hands the run to the
+  // paper's phase (stalled(), counted).
+  stalls_ = end - segment_start_ <= tol::kStallTime * run.tol.time_scale ? stalls_ + 1 : 0;
   return std::nullopt;
 }
 
@@ -165,7 +156,7 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
     run.record.account.repositioning -= run.body.mass * run.params.gravity * lowest;  // in the ledger
   }
   bool settled = false;
-  for (int round = 0; round < kSegmentRounds && !settled; ++round) {
+  for (int round = 0; round < tol::kSegmentRounds && !settled; ++round) {
     classify();
     if (resolve_impacts()) continue;
     forces_ = forces_at({run.com, velocity_, run.q, omega_});
@@ -236,7 +227,7 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
       const int face = face_under_com(run, support);
       const double potential_before = run.potential_energy();  // a flush rest lays the face down
       if (face >= 0 && !face_on_wall(face)) {
-        if (tip_offs_ < kTipOffs && band.size() >= 2 && tip_onto_face(band, face)) {
+        if (tip_offs_ < tol::kTipOffs && band.size() >= 2 && tip_onto_face(band, face)) {
           ++tip_offs_;
           ++run.record.account.tip_offs;
           return begin_segment();
@@ -247,7 +238,7 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
         run.record.account.rest_losses += kinetic_energy() - translation;
         velocity_ = omega_ = Vec3::Zero();
         return rest;
-      } else if (tip_offs_ < kTipOffs && tip_off_balance(support)) {
+      } else if (tip_offs_ < tol::kTipOffs && tip_off_balance(support)) {
         // Still, on a face the paper's test calls unstable: balanced on its boundary to round-off (a designed
         // die's face whose margin is 0 to 1e-12·L). Left by the paper's rule for an edge balance.
         ++tip_offs_;

@@ -16,9 +16,9 @@
 #include <utility>
 #include <vector>
 
-#include "../body_integrator.hpp"
-#include "../contact_forces.hpp"
+#include "../integrate/body_integrator.hpp"
 #include "../run.hpp"
+#include "../solver/contact_forces.hpp"
 #include "rest.hpp"
 
 namespace repose::sim {

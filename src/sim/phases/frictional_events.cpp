@@ -6,17 +6,14 @@
 #include <numeric>
 #include <vector>
 
-#include "../events.hpp"
+#include "../events/events.hpp"
 #include "frictional_contact.hpp"
 
 namespace repose::sim {
 
-namespace {
-// The event search samples each step at this many instants and bisects the first interval in which an event
-// holds at its end (the motion is smooth in a step: a vertex dipping below the wall and back within an eighth
-// of a step is caught by the next step's projection instead, and counted in the depth).
-constexpr int kEventSamples = 8;
-}  // namespace
+// The event search samples each step at tol::kEventSamples instants and bisects the first interval in which
+// an event holds at its end (the motion is smooth in a step: a vertex dipping below the wall and back within
+// an eighth of a step is caught by the next step's projection instead, and counted in the depth).
 
 double FrictionalContact::locate_event(double a, double b) {
   const Run& run = run_;
@@ -87,7 +84,7 @@ double FrictionalContact::locate_event(double a, double b) {
       const double c0 = h0[k], c1 = m0, c2 = -3 * h0[k] - 2 * m0 + 3 * h1[k] - m1,
                    c3 = 2 * h0[k] + m0 - 2 * h1[k] + m1;
       double lo = 0, hi = 1;
-      for (int i = 0; i < 60; ++i) {
+      for (int i = 0; i < tol::kHermiteBisections; ++i) {
         const double mid = 0.5 * (lo + hi);
         (c1 + mid * (2 * c2 + 3 * c3 * mid) < 0 ? lo : hi) = mid;
       }
@@ -100,8 +97,8 @@ double FrictionalContact::locate_event(double a, double b) {
   search.resolution = (b - a) * kEventResolution;
   double prev = a;
   sample(a, h0, w0, s0);
-  for (int j = 1; j <= kEventSamples; ++j) {
-    const double t = j == kEventSamples ? b : a + (b - a) * j / kEventSamples;
+  for (int j = 1; j <= tol::kEventSamples; ++j) {
+    const double t = j == tol::kEventSamples ? b : a + (b - a) * j / tol::kEventSamples;
     sample(t, h1, w1, s1);
     bool touch = touches(t);
     double upper = t;

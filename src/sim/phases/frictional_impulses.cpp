@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "../multi_impact.hpp"
+#include "../impact/multi_impact.hpp"
 #include "frictional_contact.hpp"
 #include "impact.hpp"
 

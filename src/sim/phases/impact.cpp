@@ -5,19 +5,9 @@
 #include <cmath>
 #include <optional>
 
-#include "../multi_impact.hpp"
+#include "../impact/multi_impact.hpp"
 
 namespace repose::sim {
-
-namespace {
-// Several points on the wall may each need an impact (the first leaves another approaching): bounded.
-constexpr int kImpactRounds = 16;
-// A run's rebounds are bounded: after this many impacts every touch hands over to the contact phase. A ball
-// with E = 0.99 bounces ~1,300 times before its rebounds fall below the touching tolerance; the bound stops a
-// chatter of ever-shorter flights (a particle with E near 1 rattling on its facets) from taking the run's
-// whole step budget.
-constexpr std::size_t kMaxImpacts = 10000;
-}  // namespace
 
 Impact::Impact(Run& run) : run_(run), law_{run.params.restitution, run.params.friction} {}
 
@@ -42,7 +32,7 @@ Impact::Outcome Impact::resolve(const Motion& motion, const std::vector<Vec3>& a
   Motion m = motion;
   auto normal_speed = [&](const Vec3& arm) { return (m.velocity + m.omega.cross(arm)).z(); };
   std::vector<ImpactRecord>& impacts = run.record.impacts;
-  for (int round = 0; round < kImpactRounds; ++round) {
+  for (int round = 0; round < tol::kImpactRounds; ++round) {
     approaching_.clear();
     for (const Vec3& arm : arms_)
       if (normal_speed(arm) < -v_tol) approaching_.push_back(arm);
@@ -105,8 +95,8 @@ Impact::Outcome Impact::resolve(const Motion& motion, const std::vector<Vec3>& a
   // (u² > 2·g·touch); otherwise the particle stays on the wall and the contact phase takes over.
   double slowest = INFINITY;
   for (const Vec3& arm : arms_) slowest = std::min(slowest, normal_speed(arm));
-  const bool rebound =
-      impacts.size() < kMaxImpacts && slowest * std::abs(slowest) > 2 * run.params.gravity * run.tol.touch;
+  const bool rebound = impacts.size() < tol::kMaxImpacts &&
+                       slowest * std::abs(slowest) > 2 * run.params.gravity * run.tol.touch;
   if (!impacts.empty() && impacts.back().t == run.t) impacts.back().rebound = rebound;
   if (rebound) ++run.record.bounces;
   return {rebound, m};

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "../rigid_impact.hpp"
+#include "../impact/rigid_impact.hpp"
 #include "../run.hpp"
 
 namespace repose::sim {

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "../stability.hpp"
+#include "../wall/stability.hpp"
 
 namespace repose::sim {
 

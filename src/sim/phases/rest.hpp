@@ -5,7 +5,7 @@
 #include <optional>
 #include <vector>
 
-#include "../dynamics.hpp"
+#include "../body/dynamics.hpp"
 #include "../run.hpp"
 
 namespace repose::sim {
