@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 
+#include "body/kinematics.hpp"
 #include "repose/error.hpp"
 
 namespace repose::sim {
@@ -41,7 +42,7 @@ Run::Run(const Particle& p, const SettleParams& prm, const Quat& orientation)
                         potential_energy();
   if (params.spin != Vec3::Zero()) {
     const Mat3 R = q.toRotationMatrix();
-    record.energy_start += 0.5 * params.spin.dot(R * body.inertia * R.transpose() * params.spin);
+    record.energy_start += 0.5 * params.spin.dot(angular_momentum(R, body.inertia, params.spin));
   }
 }
 

@@ -1,5 +1,7 @@
 #include "dynamics.hpp"
 
+#include "kinematics.hpp"
+
 namespace repose::sim {
 
 Eigen::Vector4d quaternion_rate(const Quat& q, const Vec3& w) {
@@ -85,7 +87,7 @@ int rotate_step(const Body& body, const Support& s, const Rotation& now, double 
 Vec3 momentum_after_switch(const Body& body, const Quat& q, const Vec3& com, const Vec3& omega,
                            const Vec3& com_velocity, const Support& next) {
   const Mat3 R = q.toRotationMatrix();
-  const Vec3 spin = R * body.inertia * R.transpose() * omega;
+  const Vec3 spin = angular_momentum(R, body.inertia, omega);
   const Vec3 momentum = spin + body.mass * (com - next.world).cross(com_velocity);
   return project_on_axis(next, momentum);
 }

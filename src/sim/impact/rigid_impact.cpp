@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "../body/kinematics.hpp"
 #include "../events/events.hpp"
 #include "../solver/contact_problem.hpp"
 #include "../tolerances.hpp"
@@ -31,15 +32,11 @@ Motion apply(double mass, const Mat3& inverse_inertia, const Vec3& r, const Moti
 
 }  // namespace
 
-double kinetic_energy(double mass, const Mat3& inertia, const Motion& m) {
-  return 0.5 * mass * m.velocity.squaredNorm() + 0.5 * m.omega.dot(inertia * m.omega);
-}
-
 ImpactOutcome collide(double mass, const Mat3& inertia, const Vec3& r, const Motion& before,
                       const ImpactLaw& law) {
   ImpactOutcome out;
   out.after = before;
-  const Vec3 u0 = before.velocity + before.omega.cross(r);
+  const Vec3 u0 = point_velocity(before.velocity, before.omega, r);
   out.speed_before = out.speed_after = u0;
   out.stick = u0.head<2>().norm() == 0;
   if (!(u0.z() < 0)) return out;
@@ -237,7 +234,7 @@ std::optional<Vec3> impulse_centre(double mass, const Mat3& inertia, const std::
   double scale = 0;
   for (std::size_t i = 0; i < n; ++i) {
     arm[i] = r[i].cross(Vec3::UnitZ());
-    b[i] = (before.velocity + before.omega.cross(r[i])).z();
+    b[i] = (point_velocity(before.velocity, before.omega, r[i])).z();
     scale = std::max(scale, std::abs(b[i]));
   }
   Eigen::MatrixXd A(n, n);

@@ -16,15 +16,10 @@
 #include <optional>
 #include <vector>
 
+#include "../body/kinematics.hpp"
 #include "repose/geometry/types.hpp"
 
 namespace repose::sim {
-
-/// Velocity of the centre of mass and angular velocity, world frame.
-struct Motion {
-  Vec3 velocity = Vec3::Zero();
-  Vec3 omega = Vec3::Zero();
-};
 
 struct ImpactLaw {
   double restitution = 0;      ///< Stronge's energetic coefficient E in [0, 1]
@@ -51,8 +46,5 @@ ImpactOutcome collide(double mass, const Mat3& inertia, const Vec3& r, const Mot
 /// complementarity problem), as an offset from the centre of mass; none if no point approaches the wall.
 std::optional<Vec3> impulse_centre(double mass, const Mat3& inertia, const std::vector<Vec3>& r,
                                    const Motion& before);
-
-/// Kinetic energy ½·m·v² + ½·ωᵀ·I·ω (inertia about the centre of mass, world frame).
-double kinetic_energy(double mass, const Mat3& inertia, const Motion& m);
 
 }  // namespace repose::sim

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../body/kinematics.hpp"
+
 namespace repose::sim {
 
 Flight::Flight(Run& run, const Vec3& velocity, const Vec3& omega, double height)
@@ -26,7 +28,7 @@ Flight::Flight(Run& run, const Vec3& velocity, const Vec3& omega, double height)
   rotation_.emplace(free_body_, run.tol.length, run.params.tolerance, run.tol.flight_max_step);
   const Support centre{run.com, Vec3::Zero(), false, Vec3::UnitX()};
   const Mat3 R = run.q.toRotationMatrix();
-  const Vec3 momentum = R * body.inertia * R.transpose() * omega;  // about the centre of mass
+  const Vec3 momentum = angular_momentum(R, body.inertia, omega);  // about the centre of mass
   rotation_->start(centre, {run.q, omega, momentum}, run.t, run.tol.first_step);
   step_end_ = run.t;
 }
@@ -43,7 +45,7 @@ double Flight::kinetic_energy() const {
   const Mat3 R = run_.q.toRotationMatrix();
   const double m = run_.body.mass;
   return 0.5 * m * v.z() * v.z() + 0.5 * m * (v.x() * v.x() + v.y() * v.y()) +
-         0.5 * omega_.dot(R * run_.body.inertia * R.transpose() * omega_);
+         0.5 * omega_.dot(angular_momentum(R, run_.body.inertia, omega_));
 }
 
 std::pair<double, double> Flight::integrate_step() {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "../body/kinematics.hpp"
 #include "impact.hpp"
 
 namespace repose::sim {
@@ -32,7 +33,7 @@ FrictionalContact::FrictionalContact(Run& run, const Motion& motion)
 
 double FrictionalContact::kinetic_energy() const {
   const Mat3 R = run_.q.toRotationMatrix();
-  return sim::kinetic_energy(run_.body.mass, R * run_.body.inertia * R.transpose(), {velocity_, omega_});
+  return sim::kinetic_energy(run_.body.mass, world_inertia(R, run_.body.inertia), {velocity_, omega_});
 }
 
 bool FrictionalContact::stalled() const { return stalls_ >= tol::kStalls; }
@@ -44,7 +45,7 @@ std::pair<int, int> FrictionalContact::points_before_start() const {
     const Vec3 arm = run.q * v;
     if (run.com.z() + arm.z() > run.tol.frictional_band) continue;
     ++on;
-    slipping += (velocity_ + omega_.cross(arm)).head<2>().norm() > run.tol.slip_speed;
+    slipping += (point_velocity(velocity_, omega_, arm)).head<2>().norm() > run.tol.slip_speed;
   }
   return {on, slipping};
 }
@@ -114,7 +115,7 @@ void FrictionalContact::classify() {
     const Vec3 arm = run.q * verts[k];
     const double z = run.com.z() + arm.z();
     if (z > run.tol.frictional_band) continue;
-    const Vec3 u = velocity_ + omega_.cross(arm);
+    const Vec3 u = point_velocity(velocity_, omega_, arm);
     if (u.z() > run.tol.speed) {  // leaving: it lifts (a slow one comes back as a Zeno capture)
       if (u.z() <= run.tol.separation_speed) leaving_slowly_.push_back(static_cast<int>(k));
       continue;
@@ -150,7 +151,7 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
     }
   }
   if (lowest < 0 || (lowest <= run.tol.frictional_band &&
-                     std::abs((velocity_ + omega_.cross(lowest_arm)).z()) <= run.tol.speed)) {
+                     std::abs((point_velocity(velocity_, omega_, lowest_arm)).z()) <= run.tol.speed)) {
     if (lowest < 0) run.record.note_depth(-lowest);
     run.com.z() -= lowest;
     run.record.account.repositioning -= run.body.mass * run.params.gravity * lowest;  // in the ledger
@@ -176,7 +177,7 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
   if (stop_landed_points()) {
     for (std::size_t i = 0; i < active_.size(); ++i) {
       const Vec3 arm = run.q * verts[static_cast<std::size_t>(active_[i])];
-      const Vec2 slip = (velocity_ + omega_.cross(arm)).head<2>();
+      const Vec2 slip = (point_velocity(velocity_, omega_, arm)).head<2>();
       if (conditions_[i].rule == PointRule::unilateral &&
           slip.norm() > tol::kSlipHysteresis * run.tol.slip_speed)
         conditions_[i] = {PointRule::sliding, slip.normalized(), 0.0};
@@ -203,7 +204,7 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
   double translation = 0;
   if (frictionless) {
     const Mat3 R = run.q.toRotationMatrix();
-    translation = sim::kinetic_energy(run.body.mass, R * run.body.inertia * R.transpose(),
+    translation = sim::kinetic_energy(run.body.mass, world_inertia(R, run.body.inertia),
                                       {Vec3(velocity_.x(), velocity_.y(), 0), Vec3(0, 0, omega_.z())});
   }
   const bool slides =
@@ -263,7 +264,7 @@ ContactForces FrictionalContact::forces_at(const BodyState& s, const std::vector
                                            const std::vector<Vec3>* warm) const {
   const Run& run = run_;
   const Mat3 R = s.q.toRotationMatrix();
-  const ContactBody body{run.body.mass, R * run.body.inertia * R.transpose(), run.params.gravity,
+  const ContactBody body{run.body.mass, world_inertia(R, run.body.inertia), run.params.gravity,
                          run.params.damping};
   std::vector<Vec3> arms(points.size());
   const std::vector<PointCondition> start = conditions;
@@ -272,7 +273,7 @@ ContactForces FrictionalContact::forces_at(const BodyState& s, const std::vector
     // A sliding point slides along its slip as it turns; past the instant its slip stops or turns against
     // its direction at the segment's start (an event: the segment ends there) the motion goes on with that
     // direction, so that the dense output stays smooth up to the event and locates it exactly.
-    const Vec2 slip = (s.velocity + s.omega.cross(arms[i])).head<2>();
+    const Vec2 slip = (point_velocity(s.velocity, s.omega, arms[i])).head<2>();
     if (conditions[i].rule == PointRule::sliding && slip.dot(start[i].direction) > 0)
       conditions[i].direction = slip.normalized();
   }
@@ -294,7 +295,7 @@ std::vector<FrictionalContact::PointForce> FrictionalContact::point_forces() con
   const ContactForces f = forces_at({run_.com, velocity_, run_.q, omega_});
   for (std::size_t i = 0; i < active_.size(); ++i) {
     const Vec3 arm = run_.q * run_.particle.hull.vertices[static_cast<std::size_t>(active_[i])];
-    out.push_back({run_.com + arm, velocity_ + omega_.cross(arm), f.forces[i]});
+    out.push_back({run_.com + arm, point_velocity(velocity_, omega_, arm), f.forces[i]});
   }
   return out;
 }
@@ -305,7 +306,7 @@ BodyRates FrictionalContact::rates(const BodyState& s) const {
     // A hop: free flight, as in the flight phase (Euler's equations, no damping off the wall).
     r.acceleration = Vec3(0, 0, -run_.params.gravity);
     const Mat3 R = s.q.toRotationMatrix();
-    const Mat3 inertia = R * run_.body.inertia * R.transpose();
+    const Mat3 inertia = world_inertia(R, run_.body.inertia);
     r.angular_acceleration = inertia.inverse() * -s.omega.cross(inertia * s.omega);
     return r;
   }
@@ -316,7 +317,7 @@ BodyRates FrictionalContact::rates(const BodyState& s) const {
   double normal = 0, weighted_slip = 0;
   for (std::size_t i = 0; i < active_.size(); ++i) {
     const Vec3 arm = s.q * run_.particle.hull.vertices[static_cast<std::size_t>(active_[i])];
-    const Vec3 u = s.velocity + s.omega.cross(arm);
+    const Vec3 u = point_velocity(s.velocity, s.omega, arm);
     r.friction_power += f.forces[i].head<2>().dot(u.head<2>());
     r.normal_power += f.forces[i].z() * u.z();
     // A sliding point's slip along the direction it slides in: past its stop (an event) the motion's

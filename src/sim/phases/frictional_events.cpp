@@ -6,6 +6,7 @@
 #include <numeric>
 #include <vector>
 
+#include "../body/kinematics.hpp"
 #include "../events/events.hpp"
 #include "frictional_contact.hpp"
 
@@ -49,7 +50,7 @@ double FrictionalContact::locate_event(double a, double b) {
     for (std::size_t i = 0; i < active_.size(); ++i) {
       const Vec3 arm = s.q * verts[static_cast<std::size_t>(active_[i])];
       if (s.com.z() + arm.z() > run.tol.frictional_band) return true;
-      const Vec2 slip = (s.velocity + s.omega.cross(arm)).head<2>();
+      const Vec2 slip = (point_velocity(s.velocity, s.omega, arm)).head<2>();
       if (conditions_[i].rule == PointRule::sliding) {
         if (slip.norm() <= run.tol.speed || slip.dot(conditions_[i].direction) <= 0) return true;
       } else if (slip.norm() > tol::kSlipHysteresis * run.tol.slip_speed) {

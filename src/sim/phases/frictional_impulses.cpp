@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../body/kinematics.hpp"
 #include "../impact/multi_impact.hpp"
 #include "frictional_contact.hpp"
 #include "impact.hpp"
@@ -27,7 +28,7 @@ bool FrictionalContact::resolve_impacts() {
   for (std::size_t i = 0; i < active_.size(); ++i) {
     const Vec3 arm = run.q * run.particle.hull.vertices[static_cast<std::size_t>(active_[i])];
     arms.push_back(arm);
-    const double approach = -(velocity_ + omega_.cross(arm)).z();
+    const double approach = -(point_velocity(velocity_, omega_, arm)).z();
     if (approach > fastest) fastest = approach, fastest_arm = arm;
     if (approach <= run.tol.speed) others.push_back(active_[i]), other_conditions.push_back(conditions_[i]);
   }
@@ -57,13 +58,13 @@ bool FrictionalContact::resolve_impacts() {
 // with W the stacked Delassus matrix (blocks K_ij); an edge's two corners leave the rotation about it free.
 Eigen::VectorXd FrictionalContact::stopping_impulses(const std::vector<Vec3>& arms, bool along) const {
   const Mat3 R = run_.q.toRotationMatrix();
-  const Mat3 inverse_inertia = R * run_.body.inertia.inverse() * R.transpose();
+  const Mat3 inverse_inertia = world_inverse_inertia(R, run_.body.inertia);
   const double m = run_.body.mass;
   const std::size_t n = arms.size();
   Eigen::MatrixXd W(3 * n, 3 * n);
   Eigen::VectorXd u0(3 * n);
   for (std::size_t i = 0; i < n; ++i) {
-    u0.segment<3>(3 * i) = velocity_ + omega_.cross(arms[i]);
+    u0.segment<3>(3 * i) = point_velocity(velocity_, omega_, arms[i]);
     for (std::size_t j = 0; j < n; ++j)
       W.block<3, 3>(3 * i, 3 * j) = delassus_block(m, inverse_inertia, arms[i], arms[j]);
   }
@@ -111,12 +112,12 @@ bool FrictionalContact::stop_landed_points() {
   for (const auto& [arm, held] : resting_points()) {
     if (held) continue;
     landed.push_back(arm);
-    approaching = approaching || (velocity_ + omega_.cross(arm)).z() < 0;
+    approaching = approaching || (point_velocity(velocity_, omega_, arm)).z() < 0;
   }
   if (!approaching) return false;
   const double before = kinetic_energy();
   const Mat3 R = run_.q.toRotationMatrix();
-  const MultiImpactOutcome out = collide_points(run_.body.mass, R * run_.body.inertia * R.transpose(), landed,
+  const MultiImpactOutcome out = collide_points(run_.body.mass, world_inertia(R, run_.body.inertia), landed,
                                                 {velocity_, omega_}, {0.0, run_.params.friction});
   run_.record.account.unresolved_forces += !out.converged;
   velocity_ = out.after.velocity;
@@ -134,7 +135,7 @@ void FrictionalContact::undo_drift() {
     (conditions_[i].rule == PointRule::unilateral ? at_rest_before_ : sliding_before_).push_back(active_[i]);
   if (held.empty()) return;
   const Mat3 R = run_.q.toRotationMatrix();
-  const Mat3 inverse_inertia = R * run_.body.inertia.inverse() * R.transpose();
+  const Mat3 inverse_inertia = world_inverse_inertia(R, run_.body.inertia);
   const double before = kinetic_energy();
   const Eigen::VectorXd P = stopping_impulses(held, run_.params.friction > 0);
   for (std::size_t i = 0; i < held.size(); ++i) {
@@ -157,7 +158,7 @@ bool FrictionalContact::hold_unresolved_hops() {
   const auto& verts = run.particle.hull.vertices;
   std::vector<Vec3> arms;
   for (int k : leaving_slowly_) {
-    const Vec3 r = run.q * verts[static_cast<std::size_t>(k)], u = velocity_ + omega_.cross(r);
+    const Vec3 r = run.q * verts[static_cast<std::size_t>(k)], u = point_velocity(velocity_, omega_, r);
     const double a =
         (forces_.acceleration + forces_.angular_acceleration.cross(r) + omega_.cross(omega_.cross(r))).z();
     if (a < 0 && u.z() * u.z() <= 2 * -a * run.tol.event) arms.push_back(r);
@@ -166,7 +167,7 @@ bool FrictionalContact::hold_unresolved_hops() {
   ++run.record.account.zeno_captures;
   for (int k : active_) arms.push_back(run.q * verts[static_cast<std::size_t>(k)]);
   const Mat3 R = run.q.toRotationMatrix();
-  const Mat3 inverse_inertia = R * run.body.inertia.inverse() * R.transpose();
+  const Mat3 inverse_inertia = world_inverse_inertia(R, run.body.inertia);
   const double before = kinetic_energy();
   const Eigen::VectorXd P = stopping_impulses(arms, false);
   for (std::size_t i = 0; i < arms.size(); ++i) {
@@ -192,12 +193,12 @@ bool FrictionalContact::resolve_painleve() {
   if (arms.empty()) return false;
   run.record.painleve += static_cast<int>(arms.size());
   const Mat3 R = run.q.toRotationMatrix();
-  const Mat3 inertia = R * run.body.inertia * R.transpose();
+  const Mat3 inertia = world_inertia(R, run.body.inertia);
   const Mat3 inverse_inertia = inertia.inverse();
   const double m = run.body.mass;
   const std::size_t n = arms.size();
   Eigen::VectorXd u0(3 * n);
-  for (std::size_t i = 0; i < n; ++i) u0.segment<3>(3 * i) = velocity_ + omega_.cross(arms[i]);
+  for (std::size_t i = 0; i < n; ++i) u0.segment<3>(3 * i) = point_velocity(velocity_, omega_, arms[i]);
   const Eigen::VectorXd P = stopping_impulses(arms, true);
   ImpactRecord record;
   record.t = run.t;
@@ -241,7 +242,7 @@ bool FrictionalContact::resolve_painleve() {
     total += p.z();
   }
   const Vec3 at = total > 0 ? Vec3(centre / total) : arms[0];
-  const Vec3 before = Vec3(u0.segment<3>(0)), after = velocity_ + omega_.cross(at);
+  const Vec3 before = Vec3(u0.segment<3>(0)), after = point_velocity(velocity_, omega_, at);
   record.point = run.com + at;
   record.normal_speed_before = before.z();
   record.tangential_speed_before = before.head<2>().norm();

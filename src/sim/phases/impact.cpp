@@ -5,6 +5,7 @@
 #include <cmath>
 #include <optional>
 
+#include "../body/kinematics.hpp"
 #include "../impact/multi_impact.hpp"
 
 namespace repose::sim {
@@ -25,12 +26,12 @@ Impact::Outcome Impact::resolve(const Motion& motion, const std::vector<Vec3>& a
   Run& run = run_;
   const Body& body = run.body;
   const Mat3 R = run.q.toRotationMatrix();
-  const Mat3 inertia = R * body.inertia * R.transpose();  // about the centre of mass, world frame
+  const Mat3 inertia = world_inertia(R, body.inertia);  // about the centre of mass, world frame
   arms_ = arms;
   const double v_tol = run.tol.speed;
   const double potential = run.potential_energy();
   Motion m = motion;
-  auto normal_speed = [&](const Vec3& arm) { return (m.velocity + m.omega.cross(arm)).z(); };
+  auto normal_speed = [&](const Vec3& arm) { return (point_velocity(m.velocity, m.omega, arm)).z(); };
   std::vector<ImpactRecord>& impacts = run.record.impacts;
   for (int round = 0; round < tol::kImpactRounds; ++round) {
     approaching_.clear();
@@ -61,8 +62,8 @@ Impact::Outcome Impact::resolve(const Motion& motion, const std::vector<Vec3>& a
         if (out.impulses[i].z() > 0) stick = stick && out.speed_after[i].head<2>().norm() <= v_tol;
       }
       centre = total > 0 ? Vec3(centre / total) : approaching_[0];
-      const Vec3 before = m.velocity + m.omega.cross(centre),
-                 after = out.after.velocity + out.after.omega.cross(centre);
+      const Vec3 before = point_velocity(m.velocity, m.omega, centre),
+                 after = point_velocity(out.after.velocity, out.after.omega, centre);
       record.point = run.com + centre;
       record.normal_speed_before = before.z();
       record.normal_speed_after = after.z();

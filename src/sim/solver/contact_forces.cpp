@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 
+#include "../body/kinematics.hpp"
 #include "../tolerances.hpp"
 #include "sliding_face.hpp"
 
@@ -68,7 +69,7 @@ ContactForces contact_forces(const ContactBody& body, const Motion& motion, cons
                              double friction, double slip_speed) {
   std::vector<PointCondition> conditions(arms.size());
   for (std::size_t i = 0; i < arms.size(); ++i) {
-    const Vec2 slip = (motion.velocity + motion.omega.cross(arms[i])).head<2>();
+    const Vec2 slip = (point_velocity(motion.velocity, motion.omega, arms[i])).head<2>();
     if (slip.norm() > slip_speed) {
       conditions[i].rule = PointRule::sliding;
       conditions[i].direction = slip.normalized();
