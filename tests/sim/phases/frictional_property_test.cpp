@@ -11,10 +11,13 @@
 //     fallback counted, printed by kind.
 // REPOSE_FRICTION_TOSSES sets the number (default 60 in optimised builds, 6 in debug and sanitizer builds),
 // REPOSE_FRICTION_FIRST the first index, REPOSE_FRICTION_LIST=1 lists the tosses with a hand-over or a
-// bounded round. Measured on 20afe2e (REPOSE_FRICTION_TOSSES=2000, 34 s): every property holds on 2,000 of
-// 2,000; largest rise 1.6e-9·m·g·L, largest ledger residual 3.8e-7·m·g·L; fallbacks: 19 hand-overs to the
-// paper's phase (2 stalled, 17 timed out: frictionless tosses still rocking on an edge at 200·τ among them),
-// 95 bounded segment rounds, 110 force evaluations on Lemke's pyramid, 5 unsolved, 6 unresolved.
+// bounded round. Measured on 41d5a2d: REPOSE_FRICTION_TOSSES=2000 (32 s): every property holds on 2,000 of
+// 2,000; largest rise 1.6e-9·m·g·L, largest ledger residual 3.8e-7·m·g·L; fallbacks: 2 hand-overs stalled,
+// 17 timed out, 5 bounded rounds, 109 pyramid forces, 0 unsolved, 0 unresolved. REPOSE_FRICTION_TOSSES=20000:
+// 19,999 of 20,000 hold every property; toss 2914 (μ = 0, rocking on an edge for 200·τ, handed over) closes
+// its ledger to 1.0019e-6·m·g·L, beyond the bound by 0.2 % (the integrator's error over its steps); largest
+// rise 2.5e-9·m·g·L; fallbacks: 22 hand-overs stalled, 149 timed out, 71 bounded rounds, 481 pyramid forces,
+// 25 unsolved, 79 unresolved; captures: 804,087 Zeno, 3,836 Painlevé.
 #include <gtest/gtest.h>
 
 #include <cmath>
