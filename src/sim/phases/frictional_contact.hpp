@@ -64,6 +64,9 @@ class FrictionalContact {
   std::vector<std::pair<Vec3, bool>> resting_points() const;
   bool stop_landed_points();
   void undo_drift();
+  // The least-norm velocity change that brings the points `arms` to rest (`along`: in every direction, else
+  // only across the wall), its kinetic energy in drift_corrections.
+  void project_to_rest(const std::vector<Vec3>& arms, bool along);
   bool tip_off_balance(const Support& support);
   bool face_on_wall(int face) const;
   bool tip_onto_face(const std::vector<int>& band, int face);

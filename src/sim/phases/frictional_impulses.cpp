@@ -28,7 +28,7 @@ bool FrictionalContact::resolve_impacts() {
   for (std::size_t i = 0; i < active_.size(); ++i) {
     const Vec3 arm = run.q * run.particle.hull.vertices[static_cast<std::size_t>(active_[i])];
     arms.push_back(arm);
-    const double approach = -(point_velocity(velocity_, omega_, arm)).z();
+    const double approach = -point_velocity(velocity_, omega_, arm).z();
     if (approach > fastest) fastest = approach, fastest_arm = arm;
     if (approach <= run.tol.speed) others.push_back(active_[i]), other_conditions.push_back(conditions_[i]);
   }
@@ -39,9 +39,7 @@ bool FrictionalContact::resolve_impacts() {
   if (rebound > 0 && rebound <= tol::kZenoReach * run.tol.separation_speed) {
     const ContactForces f =
         forces_at({run.com, velocity_, run.q, omega_}, others, other_conditions);  // the others' forces
-    const double a_n =
-        (f.acceleration + f.angular_acceleration.cross(fastest_arm) + omega_.cross(omega_.cross(fastest_arm)))
-            .z();
+    const double a_n = point_acceleration(f.acceleration, f.angular_acceleration, omega_, fastest_arm).z();
     if (a_n < 0 && rebound * rebound <= 2 * -a_n * run.tol.frictional_band) {
       restitution = 0;
       ++run.record.account.zeno_captures;
@@ -112,7 +110,7 @@ bool FrictionalContact::stop_landed_points() {
   for (const auto& [arm, held] : resting_points()) {
     if (held) continue;
     landed.push_back(arm);
-    approaching = approaching || (point_velocity(velocity_, omega_, arm)).z() < 0;
+    approaching = approaching || point_velocity(velocity_, omega_, arm).z() < 0;
   }
   if (!approaching) return false;
   const double before = kinetic_energy();
@@ -133,15 +131,18 @@ void FrictionalContact::undo_drift() {
   sliding_before_.clear();
   for (std::size_t i = 0; i < active_.size(); ++i)
     (conditions_[i].rule == PointRule::unilateral ? at_rest_before_ : sliding_before_).push_back(active_[i]);
-  if (held.empty()) return;
+  if (!held.empty()) project_to_rest(held, run_.params.friction > 0);
+}
+
+void FrictionalContact::project_to_rest(const std::vector<Vec3>& arms, bool along) {
   const Mat3 R = run_.q.toRotationMatrix();
   const Mat3 inverse_inertia = world_inverse_inertia(R, run_.body.inertia);
   const double before = kinetic_energy();
-  const Eigen::VectorXd P = stopping_impulses(held, run_.params.friction > 0);
-  for (std::size_t i = 0; i < held.size(); ++i) {
+  const Eigen::VectorXd P = stopping_impulses(arms, along);
+  for (std::size_t i = 0; i < arms.size(); ++i) {
     const Vec3 p = P.segment<3>(3 * static_cast<Eigen::Index>(i));
     velocity_ += p / run_.body.mass;
-    omega_ += inverse_inertia * held[i].cross(p);
+    omega_ += inverse_inertia * arms[i].cross(p);
   }
   run_.record.account.drift_corrections += before - kinetic_energy();
 }
@@ -159,23 +160,13 @@ bool FrictionalContact::hold_unresolved_hops() {
   std::vector<Vec3> arms;
   for (int k : leaving_slowly_) {
     const Vec3 r = run.q * verts[static_cast<std::size_t>(k)], u = point_velocity(velocity_, omega_, r);
-    const double a =
-        (forces_.acceleration + forces_.angular_acceleration.cross(r) + omega_.cross(omega_.cross(r))).z();
+    const double a = point_acceleration(forces_.acceleration, forces_.angular_acceleration, omega_, r).z();
     if (a < 0 && u.z() * u.z() <= 2 * -a * run.tol.event) arms.push_back(r);
   }
   if (arms.empty()) return false;
   ++run.record.account.zeno_captures;
   for (int k : active_) arms.push_back(run.q * verts[static_cast<std::size_t>(k)]);
-  const Mat3 R = run.q.toRotationMatrix();
-  const Mat3 inverse_inertia = world_inverse_inertia(R, run.body.inertia);
-  const double before = kinetic_energy();
-  const Eigen::VectorXd P = stopping_impulses(arms, false);
-  for (std::size_t i = 0; i < arms.size(); ++i) {
-    const Vec3 p = P.segment<3>(3 * static_cast<Eigen::Index>(i));
-    velocity_ += p / run.body.mass;
-    omega_ += inverse_inertia * arms[i].cross(p);
-  }
-  run.record.account.drift_corrections += before - kinetic_energy();
+  project_to_rest(arms, false);
   return true;
 }
 
