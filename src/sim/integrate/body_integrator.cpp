@@ -1,15 +1,13 @@
 // The six-degree-of-freedom integrator (body_integrator.hpp).
 #include "body_integrator.hpp"
 
-#include <boost/numeric/odeint/stepper/generation.hpp>
-#include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
 #include <cmath>
 
 #include "../body/dynamics.hpp"
+#include "dense_stepper.hpp"
 
 namespace repose::sim {
 
-namespace odeint = boost::numeric::odeint;
 using State = BodyIntegrator::State;
 
 namespace {
@@ -51,18 +49,14 @@ struct Equations {
   }
 };
 
-using Stepper = odeint::runge_kutta_dopri5<State>;
-using Dense = odeint::result_of::make_dense_output<Stepper>::type;
-
 }  // namespace
 
 struct BodyIntegrator::Impl {
   Equations equations;
-  Dense dense;
+  DenseStepper<State> stepper;
 
   Impl(double mass, double length, double gravity, double tolerance, double max_step)
-      : dense(odeint::make_dense_output(tolerance, tolerance, max_step / std::sqrt(length / gravity),
-                                        Stepper())) {
+      : stepper(std::sqrt(length / gravity), tolerance, max_step) {
     Scales& u = equations.units;
     u.length = length;
     u.time = std::sqrt(length / gravity);
@@ -97,30 +91,21 @@ void BodyIntegrator::start(const BodyState& state, const BodyLedger& ledger, dou
   y[14] = ledger.damping_work / u.energy;
   y[15] = ledger.sliding_distance / u.length;
   y[16] = ledger.normal_work / u.energy;
-  impl_->dense.initialize(y, t / u.time, first_step / u.time);
+  impl_->stepper.start(y, t, first_step);
 }
 
-std::pair<double, double> BodyIntegrator::step() {
-  const auto [s0, s1] = impl_->dense.do_step(std::cref(impl_->equations));
-  const double t = impl_->equations.units.time;
-  return {s0 * t, s1 * t};
-}
+std::pair<double, double> BodyIntegrator::step() { return impl_->stepper.step(impl_->equations); }
 
 BodyState BodyIntegrator::state_at(double t) const {
-  State y;
-  impl_->dense.calc_state(t / impl_->equations.units.time, y);
-  return body_state(y, impl_->equations.units);
+  return body_state(impl_->stepper.state_at(t), impl_->equations.units);
 }
 
 BodyLedger BodyIntegrator::ledger_at(double t) const {
-  State y;
+  const State y = impl_->stepper.state_at(t);
   const Scales& u = impl_->equations.units;
-  impl_->dense.calc_state(t / u.time, y);
   return {y[13] * u.energy, y[14] * u.energy, y[15] * u.length, y[16] * u.energy};
 }
 
-double BodyIntegrator::proposed_step() const {
-  return impl_->dense.current_time_step() * impl_->equations.units.time;
-}
+double BodyIntegrator::proposed_step() const { return impl_->stepper.proposed_step(); }
 
 }  // namespace repose::sim

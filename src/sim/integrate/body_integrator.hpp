@@ -4,9 +4,9 @@
 // The state is the centre of mass and its velocity, the orientation and the angular velocity (world frame);
 // the accelerations come from a callback (gravity, the damping moment, the gyroscopic term and the contact
 // forces of the phase's current modes), which also gives the powers the energy ledger integrates: friction's
-// and the damping moment's, and the rate at which the contact slides. Dormand–Prince 5(4) with error control
-// on scaled variables (length in L, time in T = sqrt(L/g)), as the rotation about a support
-// (rotation_integrator.hpp), so one tolerance means the same at any scale.
+// and the damping moment's, and the rate at which the contact slides. The engine's one dense stepper
+// (dense_stepper.hpp) with error control on scaled variables (length in L, time in T = sqrt(L/g)), as the
+// rotation about a support (rotation_integrator.hpp), so one tolerance means the same at any scale.
 #pragma once
 
 #include <array>

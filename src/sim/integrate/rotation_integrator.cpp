@@ -1,12 +1,11 @@
 #include "rotation_integrator.hpp"
 
-#include <boost/numeric/odeint/stepper/generation.hpp>
-#include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
 #include <cmath>
+
+#include "dense_stepper.hpp"
 
 namespace repose::sim {
 
-namespace odeint = boost::numeric::odeint;
 using State = RotationIntegrator::State;
 
 namespace {
@@ -43,23 +42,17 @@ struct Motion {
   }
 };
 
-using Stepper = odeint::runge_kutta_dopri5<State>;
-using Dense = odeint::result_of::make_dense_output<Stepper>::type;
-
 }  // namespace
 
 struct RotationIntegrator::Impl {
   Motion motion;
-  Dense dense;
-  double time_unit;
+  DenseStepper<State> stepper;
 
   Impl(const Body& body, double length, double tolerance, double max_step)
-      : dense(odeint::make_dense_output(tolerance, tolerance, max_step / std::sqrt(length / body.gravity),
-                                        Stepper())),
-        time_unit(std::sqrt(length / body.gravity)) {
+      : stepper(std::sqrt(length / body.gravity), tolerance, max_step) {
     motion.body = &body;
-    motion.time_unit = time_unit;
-    motion.momentum_unit = body.mass * length * length / time_unit;
+    motion.time_unit = stepper.time_unit();
+    motion.momentum_unit = body.mass * length * length / stepper.time_unit();
   }
 };
 
@@ -80,30 +73,19 @@ void RotationIntegrator::start(const Support& support, const Rotation& state, do
   y[3] = q.w();
   const Vec3 l = state.momentum / impl_->motion.momentum_unit;
   for (int i = 0; i < 3; ++i) y[4 + i] = l[i];
-  impl_->dense.initialize(y, t / impl_->time_unit, first_step / impl_->time_unit);
+  impl_->stepper.start(y, t, first_step);
 }
 
-std::pair<double, double> RotationIntegrator::step() {
-  const auto [s0, s1] = impl_->dense.do_step(std::cref(impl_->motion));
-  return {s0 * impl_->time_unit, s1 * impl_->time_unit};
-}
+std::pair<double, double> RotationIntegrator::step() { return impl_->stepper.step(impl_->motion); }
 
 Rotation RotationIntegrator::state_at(double t) const {
-  State y;
-  impl_->dense.calc_state(t / impl_->time_unit, y);
-  return impl_->motion.rotation(y);
+  return impl_->motion.rotation(impl_->stepper.state_at(t));
 }
 
-Quat RotationIntegrator::orientation_at(double t) const {
-  State y;
-  impl_->dense.calc_state(t / impl_->time_unit, y);
-  return quat_of(y);
-}
+Quat RotationIntegrator::orientation_at(double t) const { return quat_of(impl_->stepper.state_at(t)); }
 
-double RotationIntegrator::time() const { return impl_->dense.current_time() * impl_->time_unit; }
+double RotationIntegrator::time() const { return impl_->stepper.time(); }
 
-double RotationIntegrator::proposed_step() const {
-  return impl_->dense.current_time_step() * impl_->time_unit;
-}
+double RotationIntegrator::proposed_step() const { return impl_->stepper.proposed_step(); }
 
 }  // namespace repose::sim

@@ -2,11 +2,9 @@
 //
 // Between contact events the paper's motion is a smooth ODE in the orientation q and the angular momentum L
 // about the support: dL/dt = r × W − C·ω (Eq 4; projected on the axis for a line, Eq 17), dq/dt = ½ ω ⊗ q
-// (Eq 9), ω = R I_O⁻¹ Rᵀ L (Eq 15). It is integrated by Dormand–Prince 5(4) (Boost.Odeint's
-// runge_kutta_dopri5 in its dense-output form) with error control on scaled variables: time in
-// T = sqrt(L/g), momentum in m·L²/T, so one tolerance means the same for a grain and a boulder. Dense output
-// (a 4th-order interpolant over each accepted step) lets the engine locate events inside a step without
-// integrating again.
+// (Eq 9), ω = R I_O⁻¹ Rᵀ L (Eq 15). It is integrated by the engine's one dense stepper (dense_stepper.hpp:
+// Dormand–Prince 5(4) with dense output) with error control on scaled variables: time in T = sqrt(L/g),
+// momentum in m·L²/T, so one tolerance means the same for a grain and a boulder.
 #pragma once
 
 #include <array>
