@@ -36,14 +36,16 @@ bool Engine::step() {
     stop(Status::max_steps);
   } else if (auto* flight = std::get_if<Flight>(&phase_)) {
     if (const auto touch = flight->step()) {
-      if (!uses_impacts(run_.params) && !frictional()) {
+      if (frictional()) {
+        // The frictional phase resolves the landing's impacts at its first segment start, by the laws of
+        // its impacts in contact (Zeno's captures among them); a rebound lifts off again.
+        start_frictional({touch->velocity, touch->omega});
+      } else if (!uses_impacts(run_.params)) {
         start_contact(touch->velocity, Vec3::Zero(), false);
       } else {
         const Impact::Outcome out = Impact(run_).resolve({touch->velocity, touch->omega});
         if (out.rebound)
           start_flight(out.motion.velocity, out.motion.omega, 0.0);
-        else if (frictional())
-          start_frictional(out.motion);
         else
           start_contact(out.motion.velocity, out.motion.omega, true);
       }
@@ -62,9 +64,13 @@ bool Engine::step() {
         run_.record.handover_energy = sliding->kinetic_energy() + run_.potential_energy();
       const Vec3 velocity = sliding->velocity(), omega = sliding->omega();
       start_contact(velocity, omega, true);
-    } else if (auto rest = sliding->step()) {
-      const int count = sliding->contact_count();
-      phase_.emplace<Rest>(Rest{std::move(*rest), count});
+    } else if (auto end = sliding->step()) {
+      if (const auto* lift = std::get_if<FrictionalContact::LiftOff>(&*end)) {
+        start_flight(lift->motion.velocity, lift->motion.omega, lift->height);
+      } else {
+        const int count = sliding->contact_count();
+        phase_.emplace<Rest>(Rest{std::move(std::get<RestPose>(*end)), count});
+      }
     }
   }
   if (!run_.record.phases.empty()) run_.record.phases.back().t1 = run_.t;

@@ -28,8 +28,9 @@ struct Recorder {
   double damping_work = 0;
   double sliding_distance = 0;
   int painleve = 0;
-  FrictionalAccount account;     ///< the rest of the ledger and the fallbacks (finite friction)
-  double handover_energy = NAN;  ///< the mechanical energy at a hand-over to the paper's phase
+  FrictionalAccount account;      ///< the rest of the ledger and the fallbacks (finite friction)
+  double handover_energy = NAN;   ///< the mechanical energy at a hand-over to the paper's phase
+  double frictional_start = NAN;  ///< when the frictional contact phase first began (its time bound's start)
 
   ContactType type() const { return phases.empty() ? ContactType::free_fall : phases.back().contact; }
   /// A new contact type from time t (nothing if it is the current one).

@@ -69,8 +69,11 @@ std::optional<Flight::Touch> Flight::step() {
     const double tau = run.t - t0_;
     run.com = origin_ + velocity_ * tau - Vec3(0, 0, 0.5 * run.params.gravity * tau * tau);
     if (end != touch_) return std::nullopt;
-    // The bracket's lower end has every vertex on or above the wall: the lowest is set exactly on it.
+    // The bracket's lower end has every vertex on or above the wall: the lowest is set exactly on it (by at
+    // most the locator's resolution; the potential energy of the move is in the frictional ledger).
+    const double parabola = run.com.z();
     run.com.z() = -run.lowest_offset(run.q);
+    run.record.account.repositioning += run.body.mass * run.params.gravity * (run.com.z() - parabola);
     return Touch{velocity(), omega_};
   }
   // Without rotation, exact: the parabola from its start to the touch time. Steps end on the grid of

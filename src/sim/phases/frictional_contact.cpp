@@ -27,8 +27,9 @@ FrictionalContact::FrictionalContact(Run& run, const Motion& motion)
       velocity_(motion.velocity),
       omega_(motion.omega),
       ledger_{run.record.friction_work, run.record.damping_work, run.record.sliding_distance,
-              run.record.account.normal_work},
-      start_time_(run.t) {}
+              run.record.account.normal_work} {
+  if (std::isnan(run.record.frictional_start)) run.record.frictional_start = run.t;
+}
 
 double FrictionalContact::kinetic_energy() const {
   const Mat3 R = run_.q.toRotationMatrix();
@@ -69,11 +70,11 @@ ContactType FrictionalContact::contact_type() const {
   return type_of(contact_count());
 }
 
-std::optional<RestPose> FrictionalContact::step() {
+std::optional<FrictionalContact::End> FrictionalContact::step() {
   Run& run = run_;
   if (run.t >= step_end_) {
     segment_start_ = run.t;
-    if (auto rest = begin_segment()) return rest;
+    if (auto end = begin_segment()) return end;
     const auto [a, b] = integrator_.step();
     step_end_ = b;
     event_ = locate_event(a, b);
@@ -134,7 +135,7 @@ void FrictionalContact::classify() {
   }
 }
 
-std::optional<RestPose> FrictionalContact::begin_segment() {
+std::optional<FrictionalContact::End> FrictionalContact::begin_segment() {
   Run& run = run_;
   warm_start_.clear();  // the segment's own forces, found cold, start the sweeps of its rate evaluations
   const auto& verts = run.particle.hull.vertices;
@@ -191,6 +192,9 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
                  "t=%.12g frictional points=%zu stick=%d slide=%d painleve=%d v=%g,%g,%g omega=%g,%g,%g\n",
                  run.t, n, sticking(), sliding(), run.record.painleve, velocity_.x(), velocity_.y(),
                  velocity_.z(), omega_.x(), omega_.y(), omega_.z());
+  // Every point leaves the wall (none pressed after the impacts, captures and holds): the engine's flight
+  // takes the hop from here.
+  if (n == 0) return LiftOff{{velocity_, omega_}, std::max(run.com.z() + run.lowest_offset(run.q), 0.0)};
   run.record.set_type(type_of(static_cast<int>(n)), run.t);
   // Rest: on the wall with too little energy to lift it out of the band (a rocking block's impacts would
   // otherwise accumulate without end, as Housner's do), nothing accelerating with the velocities at zero,
@@ -209,7 +213,7 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
   const bool slides =
       !frictionless && std::any_of(conditions_.begin(), conditions_.end(),
                                    [](const PointCondition& c) { return c.rule == PointRule::sliding; });
-  if (n > 0 && !slides && kinetic_energy() - translation <= run.tol.rest_energy) {
+  if (!slides && kinetic_energy() - translation <= run.tol.rest_energy) {
     std::vector<int> band;  // every point within the band, leaving or not: the body cannot leave it
     for (std::size_t k = 0; k < verts.size(); ++k)
       if (run.com.z() + (run.q * verts[k]).z() <= run.tol.frictional_band)
@@ -227,8 +231,7 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
       const int face = face_under_com(run, support);
       const double potential_before = run.potential_energy();  // a flush rest lays the face down
       if (face >= 0 && !face_on_wall(face)) {
-        if (tip_offs_ < tol::kTipOffs && band.size() >= 2 && tip_onto_face(band, face)) {
-          ++tip_offs_;
+        if (run.record.account.tip_offs < tol::kTipOffs && band.size() >= 2 && tip_onto_face(band, face)) {
           ++run.record.account.tip_offs;
           return begin_segment();
         }
@@ -238,10 +241,9 @@ std::optional<RestPose> FrictionalContact::begin_segment() {
         run.record.account.rest_losses += kinetic_energy() - translation;
         velocity_ = omega_ = Vec3::Zero();
         return rest;
-      } else if (tip_offs_ < tol::kTipOffs && tip_off_balance(support)) {
+      } else if (run.record.account.tip_offs < tol::kTipOffs && tip_off_balance(support)) {
         // Still, on a face the paper's test calls unstable: balanced on its boundary to round-off (a designed
         // die's face whose margin is 0 to 1e-12·L). Left by the paper's rule for an edge balance.
-        ++tip_offs_;
         ++run.record.account.tip_offs;
         return begin_segment();
       }

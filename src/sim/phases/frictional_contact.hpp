@@ -2,11 +2,14 @@
 //
 // The body is free (six degrees of freedom) with unilateral contacts at its hull vertices on the wall: each
 // pressed point sticks or slides by Coulomb's law (contact_forces.hpp); a point whose normal force would turn
-// negative opens and lifts; a body whose points all leave flies (a hop) within this phase. Between events the
+// negative opens and lifts; a body whose points all leave the wall ends the phase (a lift-off: the engine's
+// flight takes the hop, and its touch starts this phase again, docs/method.md "Phases"). Between events the
 // rule of each point is fixed — sliding along its slip, or at rest on the wall (stick, or start to slide on
 // the cone) — and the motion is integrated with dense output (body_integrator.hpp). Events, located on the
 // dense output: a vertex reaching the wall (an impact by the impact laws, plastic when too slow to leave
-// the band again) and a sliding point's slip stopping or reversing (its rule is chosen again). Painlevé's
+// the band again; a landing's impacts are resolved at the phase's first segment start the same way) and a
+// point's rule ending (a slip stopping or reversing, a point at rest starting to slip, a point lifting out
+// of the band): the points' rules are chosen again. Painlevé's
 // inconsistent case is an impact without collision at the point. The phase ends in the flush rest of a stable
 // face, reached when nothing moves and nothing accelerates.
 #pragma once
@@ -14,6 +17,7 @@
 #include <Eigen/Dense>
 #include <optional>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "../integrate/body_integrator.hpp"
@@ -30,11 +34,20 @@ class FrictionalContact {
   FrictionalContact(const FrictionalContact&) = delete;  // the integrator's callback points at this
   FrictionalContact& operator=(const FrictionalContact&) = delete;
 
-  /// Advances one step (shorter at an event, the time limit or advance_to's); the rest, once reached.
-  std::optional<RestPose> step();
+  /// Every point leaves the wall: the body flies from its pose with `motion`, its lowest point `height` above
+  /// the wall (within the band).
+  struct LiftOff {
+    Motion motion;
+    double height = 0;
+  };
+  /// How the phase ends: at rest, or lifted off the wall.
+  using End = std::variant<RestPose, LiftOff>;
+  /// Advances one step (shorter at an event, the time limit or advance_to's); the phase's end, once reached.
+  std::optional<End> step();
 
   const Vec3& velocity() const { return velocity_; }
-  double start_time() const { return start_time_; }
+  /// When the run first took this phase (its hops between landings count in its time).
+  double start_time() const { return run_.record.frictional_start; }
   /// Segments kept ending at once even with every point taken as at rest: the engine hands over.
   bool stalled() const;
   const Vec3& omega() const { return omega_; }
@@ -55,8 +68,8 @@ class FrictionalContact {
 
  private:
   // The start of a segment at run.t: the pose projected onto the wall, the points on it classified, impacts
-  // and Painlevé's case resolved, the rest test, and the integrator started.
-  std::optional<RestPose> begin_segment();
+  // and Painlevé's case resolved, the lift-off and rest tests, and the integrator started.
+  std::optional<End> begin_segment();
   void classify();
   bool resolve_impacts();
   bool hold_unresolved_hops();
@@ -100,10 +113,8 @@ class FrictionalContact {
   double step_end_ = -INFINITY;
   double event_ = INFINITY;
   bool started_ = false;
-  double start_time_ = 0;
   double segment_start_ = 0;
-  int stalls_ = 0;    // segments in a row that ended at once
-  int tip_offs_ = 0;  // balances tipped off
+  int stalls_ = 0;  // segments in a row that ended at once
 };
 
 }  // namespace repose::sim

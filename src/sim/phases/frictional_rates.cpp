@@ -54,15 +54,7 @@ std::vector<FrictionalContact::PointForce> FrictionalContact::point_forces() con
 }
 
 BodyRates FrictionalContact::rates(const BodyState& s) const {
-  BodyRates r;
-  if (active_.empty()) {
-    // A hop: free flight, as in the flight phase (Euler's equations, no damping off the wall).
-    r.acceleration = Vec3(0, 0, -run_.params.gravity);
-    const Mat3 R = s.q.toRotationMatrix();
-    const Mat3 inertia = world_inertia(R, run_.body.inertia);
-    r.angular_acceleration = inertia.inverse() * -s.omega.cross(inertia * s.omega);
-    return r;
-  }
+  BodyRates r;  // (a segment has points on the wall: a hop is the engine's flight)
   const ContactForces f = forces_at(s);
   count_fallbacks(f);
   r.acceleration = f.acceleration;
