@@ -34,8 +34,8 @@ class Engine {
 
   const Run& run() const { return run_; }
   /// The current phase (for white-box tests that check a phase's own work as the run goes).
-  using Phase = std::variant<Flight, Contact, FrictionalContact, Rest, Stopped>;
-  Phase& phase() { return phase_; }
+  using AnyPhase = std::variant<Flight, Contact, FrictionalContact, Rest, Stopped>;
+  AnyPhase& phase() { return phase_; }
 
  private:
   void start_flight(const Vec3& velocity, const Vec3& omega, double height);
@@ -47,7 +47,7 @@ class Engine {
   double kinetic_energy() const;
 
   Run run_;
-  Phase phase_;
+  AnyPhase phase_;
 };
 
 }  // namespace repose::sim

@@ -14,17 +14,17 @@ Vec3 momentum_about(const SwitchState& impact, const Support& next) {
   return momentum_after_switch(impact.body, impact.q, impact.com, impact.omega, impact.com_velocity, next);
 }
 
-std::vector<Vec2> touching_polygon(const std::vector<Touch>& touching, double tol) {
+std::vector<Vec2> touching_polygon(const std::vector<WallVertex>& touching, double tol) {
   std::vector<Vec2> pts;
-  for (const Touch& t : touching) pts.emplace_back(t.world.x(), t.world.y());
+  for (const WallVertex& t : touching) pts.emplace_back(t.world.x(), t.world.y());
   return convex_hull_2d(pts, tol);
 }
 
 // The touching point whose footprint is nearest `p` (a corner of their polygon).
-const Touch& nearest_touching(const std::vector<Touch>& touching, const Vec2& p) {
-  const Touch* best = &touching[0];
+const WallVertex& nearest_touching(const std::vector<WallVertex>& touching, const Vec2& p) {
+  const WallVertex* best = &touching[0];
   double best_d = INFINITY;
-  for (const Touch& t : touching) {
+  for (const WallVertex& t : touching) {
     const double d = (Vec2(t.world.x(), t.world.y()) - p).norm();
     if (d < best_d) {
       best_d = d;
@@ -36,16 +36,19 @@ const Touch& nearest_touching(const std::vector<Touch>& touching, const Vec2& p)
 
 }  // namespace
 
-SupportChoice point_support(const Touch& t) { return {{t.world, t.body, false, Vec3::UnitX()}, t.vertex}; }
+SupportChoice point_support(const WallVertex& t) {
+  return {{t.world, t.body, false, Vec3::UnitX()}, t.vertex};
+}
 
-SupportChoice line_support(const Touch& t, Vec3 axis) {
+SupportChoice line_support(const WallVertex& t, Vec3 axis) {
   SupportChoice c = point_support(t);
   c.support.line = true;
   c.support.axis = axis.normalized();
   return c;
 }
 
-bool others_separate(const SwitchState& impact, const std::vector<Touch>& touching, const Support& next) {
+bool others_separate(const SwitchState& impact, const std::vector<WallVertex>& touching,
+                     const Support& next) {
   const Body& body = impact.body;
   const Vec3 w = omega_from_momentum(body, next, impact.q, momentum_about(impact, next));
   const Mat3 inertia = inertia_about_support(body, next, impact.q);
@@ -56,7 +59,7 @@ bool others_separate(const SwitchState& impact, const std::vector<Touch>& touchi
                                : Vec3(inertia.ldlt().solve(m - w.cross(inertia * w)));
   const double v_tol = tol::kSpeed * std::sqrt(body.gravity * impact.length);
   const double a_tol = tol::kAccel * body.gravity;
-  for (const Touch& t : touching) {
+  for (const WallVertex& t : touching) {
     Vec3 r = t.world - next.world;
     if (next.line) r -= r.dot(next.axis) * next.axis;
     if (r.norm() <= impact.touch_tol) continue;  // on the support
@@ -70,7 +73,7 @@ bool others_separate(const SwitchState& impact, const std::vector<Touch>& touchi
   return true;
 }
 
-SupportChoice choose_from_touching(const SwitchState& impact, const std::vector<Touch>& touching,
+SupportChoice choose_from_touching(const SwitchState& impact, const std::vector<WallVertex>& touching,
                                    const Vec2& g) {
   const std::vector<Vec2> poly = touching_polygon(touching, impact.touch_tol);
   const ClosestFeature nearest = closest_feature(poly, g);
@@ -79,7 +82,7 @@ SupportChoice choose_from_touching(const SwitchState& impact, const std::vector<
   for (int i = 0; i < (n == 2 ? 1 : n); ++i) candidates.push_back({i, (i + 1) % n});
   for (int i = 0; i < n; ++i) candidates.push_back({i, -1});
   auto make = [&](const ClosestFeature& f) {
-    const Touch& a = nearest_touching(touching, poly[f.i]);
+    const WallVertex& a = nearest_touching(touching, poly[f.i]);
     if (f.j < 0) return point_support(a);
     // The edge joins two points on the wall: a horizontal hinge, whatever round-off says.
     Vec3 edge = nearest_touching(touching, poly[f.j]).world - a.world;
@@ -107,11 +110,11 @@ SupportChoice choose_from_touching(const SwitchState& impact, const std::vector<
   return c;
 }
 
-SupportChoice choose_smooth(const SwitchState& impact, const std::vector<Touch>& touching,
-                            const Touch& current, const Vec2& g) {
-  const Touch* lowest = &current;
+SupportChoice choose_smooth(const SwitchState& impact, const std::vector<WallVertex>& touching,
+                            const WallVertex& current, const Vec2& g) {
+  const WallVertex* lowest = &current;
   double deepest = INFINITY;
-  for (const Touch& t : touching)
+  for (const WallVertex& t : touching)
     if (t.vertex != current.vertex && t.height < deepest) {
       deepest = t.height;
       lowest = &t;

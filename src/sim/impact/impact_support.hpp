@@ -10,9 +10,10 @@
 
 namespace repose::sim {
 
-/// A hull vertex on the wall (within the touching tolerance): its index, where it is, and its height (which
-/// may differ from world.z() by round-off; the engine's own height of the vertex).
-struct Touch {
+/// A hull vertex on the wall (within the touching tolerance; Flight::Touch is the motion when one reaches
+/// it): its index, where it is, and its height (which may differ from world.z() by round-off; the engine's
+/// own height of the vertex).
+struct WallVertex {
   int vertex = -1;
   Vec3 world = Vec3::Zero();
   Vec3 body = Vec3::Zero();  ///< body frame, relative to the centre of mass
@@ -44,27 +45,27 @@ struct SupportChoice {
 
 /// The support at hull vertex `t` (a point), or the horizontal line through it along `axis` (its z is
 /// dropped: the line joins two points on the wall).
-SupportChoice point_support(const Touch& t);
-SupportChoice line_support(const Touch& t, Vec3 axis);
+SupportChoice point_support(const WallVertex& t);
+SupportChoice line_support(const WallVertex& t, Vec3 axis);
 
 /// Whether, rotating about `next` right after the impact (angular momentum about it conserved), every other
 /// touching point moves up, or at zero speed is accelerated up by gravity, and is not pulled back within a
 /// tenth of a step.
-bool others_separate(const SwitchState& impact, const std::vector<Touch>& touching, const Support& next);
+bool others_separate(const SwitchState& impact, const std::vector<WallVertex>& touching, const Support& next);
 
 /// Several points on the wall, centre of mass's projection `g`: the feature of their polygon nearest `g`,
 /// unless that would drive another touching point into the wall; then the first feature (edges in polygon
 /// order, then corners) that lets every other point separate. Failing that, the motion stops (`stop`) and
 /// the same search is made from rest, where gravity alone decides; failing that too (the centre of mass over
 /// the polygon), the nearest edge from rest, which keeps both its ends on the wall.
-SupportChoice choose_from_touching(const SwitchState& impact, const std::vector<Touch>& touching,
+SupportChoice choose_from_touching(const SwitchState& impact, const std::vector<WallVertex>& touching,
                                    const Vec2& g);
 
 /// A smooth particle turns about its single lowest point: the lowest touching point other than the current
 /// support's vertex `current` (the most recent touch; of equal heights the first listed), else that vertex;
 /// if that would drive another touching point into the wall (rocking on an edge of the discretised surface),
 /// as choose_from_touching.
-SupportChoice choose_smooth(const SwitchState& impact, const std::vector<Touch>& touching,
-                            const Touch& current, const Vec2& g);
+SupportChoice choose_smooth(const SwitchState& impact, const std::vector<WallVertex>& touching,
+                            const WallVertex& current, const Vec2& g);
 
 }  // namespace repose::sim

@@ -17,7 +17,7 @@ Quat quat_of(const State& y) {
 }
 
 // The right-hand side of Eqs 4, 9 and 15 (17 for a line) in the scaled state.
-struct Motion {
+struct RotationEquations {
   const Body* body = nullptr;
   Support support;
   SupportInertia inertia;    // of `support`, computed once per support
@@ -45,7 +45,7 @@ struct Motion {
 }  // namespace
 
 struct RotationIntegrator::Impl {
-  Motion motion;
+  RotationEquations motion;
   DenseStepper<State> stepper;
 
   Impl(const Body& body, double length, double tolerance, double max_step)

@@ -30,7 +30,7 @@
 #include "../impact/impact_support.hpp"
 #include "../integrate/rotation_integrator.hpp"
 #include "../run.hpp"
-#include "../wall/contact.hpp"
+#include "../wall/contact_type.hpp"
 #include "rest.hpp"
 
 namespace repose::sim {
@@ -212,7 +212,7 @@ class Contact {
   std::vector<int> event_candidates_;  // vertices that may cause an event within the step
   // Scratch, kept to avoid allocating per step.
   std::vector<Vec3> contact_points_, footprints_;
-  std::vector<Touch> touches_;
+  std::vector<WallVertex> touches_;
   std::vector<double> next_z_;
   std::vector<int> next_contact_, decision_contact_, decision_touching_, decision_set_;
   std::vector<std::pair<double, double>> margin_samples_;  // brief_stability_pass's margins by time

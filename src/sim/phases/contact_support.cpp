@@ -38,8 +38,8 @@ bool Contact::choose_support(const LineFit& fit, const Vec2& g, const Vec3& omeg
   };
 
   if (run.smooth) {
-    const Touch current{support_vertex_, world_vertex(run.q, support_vertex_),
-                        verts[static_cast<std::size_t>(support_vertex_)], z_[support_vertex_]};
+    const WallVertex current{support_vertex_, world_vertex(run.q, support_vertex_),
+                             verts[static_cast<std::size_t>(support_vertex_)], z_[support_vertex_]};
     take(choose_smooth(impact, touches_, current, g));
   } else if (touching_.size() <= 1) {
     // One point on the wall: the paper's kinematics from the contact set (Algorithm 1), a rotation about

@@ -27,13 +27,13 @@ Body test_body() {
 }
 
 // A touching point at world (x, y, height), body frame relative to the centre of mass `com` (q = 1).
-Touch touch(int vertex, double x, double y, double height, const Vec3& com) {
+WallVertex touch(int vertex, double x, double y, double height, const Vec3& com) {
   const Vec3 w(x, y, height);
   return {vertex, w, w - com, height};
 }
 
 // The touching points A (0, 0), B (2, 0), C (0, 2) on the wall, vertices first, first + 1, first + 2.
-std::vector<Touch> triangle_abc(const Vec3& com, int first = 0) {
+std::vector<WallVertex> triangle_abc(const Vec3& com, int first = 0) {
   return {touch(first, 0, 0, 0, com), touch(first + 1, 2, 0, 0, com), touch(first + 2, 0, 2, 0, com)};
 }
 
@@ -51,7 +51,7 @@ TEST(ImpactSupport, AFarSideEdgeIsChosenWhenTheNearestEdgeAndTheFirstEdgeWouldDr
   const Body body = test_body();
   const Vec3 com(-0.2, 1, 1);
   const SwitchState impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3(2, 0.5, -1), 1.0, 1e-9, 1e-6};
-  const std::vector<Touch> touching = triangle_abc(com, 10);
+  const std::vector<WallVertex> touching = triangle_abc(com, 10);
   Support about_ca{touching[2].world, touching[2].body, true, Vec3(0, -1, 0)};
   Support about_ab{touching[0].world, touching[0].body, true, Vec3(1, 0, 0)};
   Support about_bc{touching[1].world, touching[1].body, true, Vec3(-1, 1, 0).normalized()};
@@ -73,7 +73,7 @@ TEST(ImpactSupport, FromRestTheNearestFeatureLetsTheOthersLiftOff) {
   const Body body = test_body();
   const Vec3 com(3, 0.5, 1);
   const SwitchState impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3::Zero(), 1.0, 1e-9, 1e-6};
-  const std::vector<Touch> touching = triangle_abc(com);
+  const std::vector<WallVertex> touching = triangle_abc(com);
   const SupportChoice c = choose_from_touching(impact, touching, Vec2(com.x(), com.y()));
   EXPECT_EQ(c.vertex, 1);
   EXPECT_FALSE(c.support.line);
@@ -90,8 +90,9 @@ TEST(ImpactSupport, WhenNoFeatureLetsTheOthersLiftTheNearestEdgeKeepsTwoPointsOn
   const Body body = test_body();
   const Vec3 com(0.5, 0.6, 1);
   const SwitchState impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3::Zero(), 1.0, 1e-9, 1e-6};
-  const std::vector<Touch> touching = triangle_abc(com);
-  for (const Touch& p : touching) EXPECT_FALSE(others_separate(impact, touching, Support{p.world, p.body}));
+  const std::vector<WallVertex> touching = triangle_abc(com);
+  for (const WallVertex& p : touching)
+    EXPECT_FALSE(others_separate(impact, touching, Support{p.world, p.body}));
   EXPECT_FALSE(
       others_separate(impact, touching, Support{touching[0].world, touching[0].body, true, Vec3(1, 0, 0)}));
   EXPECT_FALSE(
@@ -122,8 +123,9 @@ TEST(ImpactSupport, WhenNoFeatureLetsTheOthersLiftTheMotionStopsAndGravityChoose
   const Body body = test_body();
   const Vec3 com(-0.5, -0.5, 1);
   const SwitchState impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3(1, 1, -1), 1.0, 1e-9, 1e-6};
-  const std::vector<Touch> touching = triangle_abc(com);
-  for (const Touch& p : touching) EXPECT_FALSE(others_separate(impact, touching, Support{p.world, p.body}));
+  const std::vector<WallVertex> touching = triangle_abc(com);
+  for (const WallVertex& p : touching)
+    EXPECT_FALSE(others_separate(impact, touching, Support{p.world, p.body}));
   EXPECT_FALSE(
       others_separate(impact, touching, Support{touching[0].world, touching[0].body, true, Vec3(1, 0, 0)}));
   EXPECT_FALSE(
@@ -149,7 +151,7 @@ TEST(ImpactSupport, APointRisingSlowerThanTheVelocityToleranceOrPulledBackAtOnce
   // within a tenth of the window dt (2·v_z/(−a_z) < 0.1·dt).
   const Body body = test_body();
   const Vec3 com(0, 0.5, 1);
-  const Touch p = touch(0, 0, 0, 0, com), t = touch(1, 0, 1, 0, com);
+  const WallVertex p = touch(0, 0, 0, 0, com), t = touch(1, 0, 1, 0, com);
   const Support hinge{p.world, p.body, true, Vec3(1, 0, 0)};
   const double g = body.gravity, a_z = -0.5 * g / 1.35;
   auto separates = [&](double v_z, double dt, double length = 1.0) {
@@ -180,8 +182,9 @@ TEST(ImpactSupport, ASmoothParticlePivotsOnItsLowestNewTouch) {
   const Body body = test_body();
   const Vec3 com(0.6, 0.6, 1);
   const SwitchState impact{body, Quat::Identity(), com, Vec3::Zero(), Vec3(-2, -2, -1), 1.0, 1e-9, 1e-6};
-  const Touch current = touch(5, 0, 1, 0, com);
-  const std::vector<Touch> touching = {current, touch(6, 0, 0, -2e-12, com), touch(7, 1, 0, -1e-12, com)};
+  const WallVertex current = touch(5, 0, 1, 0, com);
+  const std::vector<WallVertex> touching = {current, touch(6, 0, 0, -2e-12, com),
+                                            touch(7, 1, 0, -1e-12, com)};
   const SupportChoice c = choose_smooth(impact, touching, current, Vec2(com.x(), com.y()));
   EXPECT_EQ(c.vertex, 6);
   EXPECT_FALSE(c.support.line);
@@ -189,7 +192,7 @@ TEST(ImpactSupport, ASmoothParticlePivotsOnItsLowestNewTouch) {
   EXPECT_FALSE(others_separate(impact, touching, about_b));
   // Two new touches at exactly the same height: the first listed is "the lowest" (the engine lists touching
   // points by vertex index, so the choice is deterministic).
-  const std::vector<Touch> tie = {current, touch(6, 0, 0, -2e-12, com), touch(7, 1, 0, -2e-12, com)};
+  const std::vector<WallVertex> tie = {current, touch(6, 0, 0, -2e-12, com), touch(7, 1, 0, -2e-12, com)};
   const SupportChoice first = choose_smooth(impact, tie, current, Vec2(com.x(), com.y()));
   EXPECT_EQ(first.vertex, 6);
   EXPECT_FALSE(first.support.line);  // A alone (B would fail, and the fallback hinges on the edge AB)

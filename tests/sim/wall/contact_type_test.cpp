@@ -1,7 +1,7 @@
 // Algorithm 1's best-fit line and contact type against hand-computed scatter: the principal direction and
 // the residual sum of squared distances (RSS) of small point sets. Internal header: these are the engine's
 // building blocks, tested on their own.
-#include "../../../src/sim/wall/contact.hpp"
+#include "../../../src/sim/wall/contact_type.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "contact.hpp"
+#include "contact_type.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
