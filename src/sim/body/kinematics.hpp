@@ -4,6 +4,9 @@
 // solver/contact_problem.hpp.
 #pragma once
 
+#include <algorithm>
+#include <vector>
+
 #include "repose/geometry/types.hpp"
 
 namespace repose::sim {
@@ -43,6 +46,34 @@ inline Vec3 angular_momentum(const Mat3& R, const Mat3& body_inertia, const Vec3
 /// ½·m·|v|² + ½·ωᵀ·I·ω, with I the world inertia.
 inline double kinetic_energy(double mass, const Mat3& inertia, const Motion& m) {
   return 0.5 * mass * m.velocity.squaredNorm() + 0.5 * m.omega.dot(inertia * m.omega);
+}
+
+/// The motion after the impulses `impulses[i]`, each scaled by `scale`, at the points `arms[i]`.
+inline Motion apply_impulses(double mass, const Mat3& inverse_inertia, const Motion& m,
+                             const std::vector<Vec3>& arms, const std::vector<Vec3>& impulses,
+                             double scale = 1) {
+  Motion out = m;
+  for (std::size_t i = 0; i < arms.size(); ++i) {
+    const Vec3 p = scale * impulses[i];
+    out.velocity += p / mass;
+    out.omega += inverse_inertia * arms[i].cross(p);
+  }
+  return out;
+}
+
+/// The scale s in [0, 1] of the impulses that leaves the least kinetic energy: along s the energy is
+/// K0 + a·s + b·s² (a = Σ P_i·u_i with u_i the points' velocities before, b = K(1) − K0 − a), so s = 1 when
+/// the impulses take energy, else the minimiser −a/(2b) clamped to [0, 1]. Impulses changed after they were
+/// found (a cone's projection, a pulling component dropped) can add energy; scaled by s they cannot.
+inline double energy_minimising_scale(double mass, const Mat3& inertia, const Motion& m,
+                                      const std::vector<Vec3>& arms, const std::vector<Vec3>& impulses) {
+  const double k0 = kinetic_energy(mass, inertia, m);
+  const double k1 = kinetic_energy(mass, inertia, apply_impulses(mass, inertia.inverse(), m, arms, impulses));
+  if (!(k1 > k0)) return 1;
+  double a = 0;
+  for (std::size_t i = 0; i < arms.size(); ++i) a += impulses[i].dot(point_velocity(m, arms[i]));
+  const double b = k1 - k0 - a;
+  return b > 0 ? std::clamp(-a / (2 * b), 0.0, 1.0) : 0.0;
 }
 
 }  // namespace repose::sim

@@ -204,33 +204,18 @@ bool FrictionalContact::resolve_painleve() {
     if (t > cone) p.head<2>() *= cone / t;
     impulses[i] = p;
   }
-  // Dropping and projecting can leave impulses that add kinetic energy. Scaled by s (the cones hold any
-  // s ≥ 0), the kinetic energy is K0 + a·s + b·s² with a = Σ P_i·u_i: s is the minimiser, at most 1.
-  const auto energy_after = [&](double scale) {
-    Vec3 v = velocity_, w = omega_;
-    for (std::size_t i = 0; i < n; ++i) {
-      v += scale * impulses[i] / m;
-      w += inverse_inertia * arms[i].cross(scale * impulses[i]);
-    }
-    return sim::kinetic_energy(m, inertia, {v, w});
-  };
-  const double k0 = sim::kinetic_energy(m, inertia, {velocity_, omega_}), k1 = energy_after(1.0);
-  double scale = 1;
-  if (k1 > k0) {
-    double a = 0;
-    for (std::size_t i = 0; i < n; ++i) a += impulses[i].dot(u0.segment<3>(3 * i));
-    const double b = k1 - k0 - a;
-    scale = b > 0 ? std::clamp(-a / (2 * b), 0.0, 1.0) : 0.0;
-  }
+  // Dropping and projecting can leave impulses that add kinetic energy: scaled to their energy minimum.
+  const double scale = energy_minimising_scale(m, inertia, {velocity_, omega_}, arms, impulses);
   const Vec3 velocity_before = velocity_;
+  const Motion jammed = apply_impulses(m, inverse_inertia, {velocity_, omega_}, arms, impulses, scale);
+  velocity_ = jammed.velocity;
+  omega_ = jammed.omega;
   Vec3 centre = Vec3::Zero();
   double total = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec3 p = scale * impulses[i];
-    velocity_ += p / m;
-    omega_ += inverse_inertia * arms[i].cross(p);
-    centre += p.z() * arms[i];
-    total += p.z();
+    const double pn = (scale * impulses[i]).z();
+    centre += pn * arms[i];
+    total += pn;
   }
   const Vec3 at = total > 0 ? Vec3(centre / total) : arms[0];
   const Vec3 before = Vec3(u0.segment<3>(0)), after = point_velocity(velocity_, omega_, at);

@@ -141,6 +141,11 @@ std::string check_toss(const Toss& t, Totals& totals) {
     if (std::isfinite(mu) && i.impulse.head<2>().norm() > mu * std::max(i.impulse.z(), 0.0) + impulse_tol)
       why << " an impulse outside the cone (|P_t| = " << i.impulse.head<2>().norm()
           << ", μ·P_n = " << mu * i.impulse.z() << ") at t = " << i.t << ";";
+    // No impulse of the wall creates energy (Stronge's law dissipates; Painlevé's impacts without collision
+    // are scaled back to their energy minimum): round-off of kinetic energies up to m·g·L·(1 + 10²).
+    if (i.energy_after > i.energy_before + kForce * 101 * mgL)
+      why << " an impulse added " << (i.energy_after - i.energy_before) / mgL << " m·g·L at t = " << i.t
+          << ";";
   }
   if (r.frictional) {
     const FrictionalAccount& f = *r.frictional;
