@@ -188,8 +188,7 @@ bool FrictionalContact::resolve_painleve() {
   const Mat3 inverse_inertia = inertia.inverse();
   const double m = run.body.mass;
   const std::size_t n = arms.size();
-  Eigen::VectorXd u0(3 * n);
-  for (std::size_t i = 0; i < n; ++i) u0.segment<3>(3 * i) = point_velocity(velocity_, omega_, arms[i]);
+  const Vec3 before = point_velocity(velocity_, omega_, arms[0]);  // the record's speeds before
   const Eigen::VectorXd P = stopping_impulses(arms, true);
   ImpactRecord record;
   record.t = run.t;
@@ -218,7 +217,7 @@ bool FrictionalContact::resolve_painleve() {
     total += pn;
   }
   const Vec3 at = total > 0 ? Vec3(centre / total) : arms[0];
-  const Vec3 before = Vec3(u0.segment<3>(0)), after = point_velocity(velocity_, omega_, at);
+  const Vec3 after = point_velocity(velocity_, omega_, at);
   record.point = run.com + at;
   record.normal_speed_before = before.z();
   record.tangential_speed_before = before.head<2>().norm();
