@@ -45,19 +45,28 @@ double FrictionalContact::locate_event(double a, double b) {
   // start; a point at rest starting to slip (issue 48: it kept the rule of a point at rest until the step
   // ended, sticking while it moved); a point on the wall lifting out of the band (issue 48: the set was
   // fixed for the step, and a point that had lifted could take a force above the wall).
+  // A sliding point reaching Painlevé's dynamic jam (tolerances.hpp, kJamCompliance): its compliance under
+  // its own friction first, cheap, and only where that is small the forces that decide it.
   const auto rule_ends = [&](double t) {
     const BodyState s = integrator_.state_at(t);
+    const Mat3 inverse_inertia = world_inverse_inertia(s.q.toRotationMatrix(), run.body.inertia);
+    bool near_jam = false;
     for (std::size_t i = 0; i < active_.size(); ++i) {
       const Vec3 arm = s.q * verts[static_cast<std::size_t>(active_[i])];
       if (s.com.z() + arm.z() > run.tol.frictional_band) return true;
       const Vec2 slip = (point_velocity(s.velocity, s.omega, arm)).head<2>();
       if (conditions_[i].rule == PointRule::sliding) {
         if (slip.norm() <= run.tol.speed || slip.dot(conditions_[i].direction) <= 0) return true;
+        const Mat3 W = delassus_block(run.body.mass, inverse_inertia, arm);
+        near_jam = near_jam || sliding_compliance(W, run.params.friction, slip.normalized()) <=
+                                   tol::kJamCompliance * W(2, 2);
       } else if (slip.norm() > tol::kSlipHysteresis * run.tol.slip_speed) {
         return true;
       }
     }
-    return false;
+    if (!near_jam) return false;
+    const ContactForces f = forces_at(s);
+    return std::any_of(f.inconsistent.begin(), f.inconsistent.end(), [](char c) { return c != 0; });
   };
   // The vertices' heights and vertical velocities at an instant: a vertex that dips below the wall and comes
   // back between two samples (its height falling at the first, rising at the second) is found by the minimum

@@ -145,11 +145,16 @@ ContactForces contact_forces(const ContactBody& body, const Motion& motion, cons
     // Painlevé: a sliding point driven into the wall that no normal force can hold, decided by the problem —
     // its own normal force would drive it in faster, W_nn − μ·W_nt·ŝ ≤ 0 (contact_problem.hpp) — not by a
     // solver failing (issue 48: a problem with several solutions was read as none).
-    if (conditions[i].rule == PointRule::sliding && !pressed && value.z() < -tiny) {
-      const Mat3 W = delassus_block(problem.mass, problem.inverse_inertia, arms[i]);
-      out.inconsistent[i] =
-          no_solution || W(2, 2) - friction * W.block<1, 2>(2, 0).dot(conditions[i].direction) <= 0;
-    }
+    // A pressed sliding point at a dynamic jam (tolerances.hpp, kJamCompliance) is the same case in the
+    // limit.
+    if (conditions[i].rule != PointRule::sliding) continue;
+    const Mat3 W = delassus_block(problem.mass, problem.inverse_inertia, arms[i]);
+    const double compliance = sliding_compliance(W, friction, conditions[i].direction);
+    if (!pressed && value.z() < -tiny)
+      out.inconsistent[i] = no_solution || compliance <= 0;
+    else if (pressed)
+      out.inconsistent[i] = compliance <= tol::kJamCompliance * W(2, 2) &&
+                            s.reactions[i].z() >= tol::kJamForce * problem.mass * problem.scale;
   }
   return out;
 }

@@ -121,7 +121,7 @@ Vec3 local_reaction(const Mat3& W, const Vec3& f, double mu, const PointConditio
   const Vec2 ft = f.head<2>();
   if (c.rule == PointRule::sliding) {
     if (f.z() >= 0) return Vec3::Zero();
-    const double d = W(2, 2) - mu * W.block<1, 2>(2, 0).dot(c.direction);
+    const double d = sliding_compliance(W, mu, c.direction);
     if (!(d > 0)) {
       ++counts.painleve;
       return Vec3::Zero();
@@ -180,6 +180,10 @@ double sweep_once(const ContactProblem& p, const std::vector<Mat3>& diagonal,
 }
 
 }  // namespace
+
+double sliding_compliance(const Mat3& W, double mu, const Vec2& direction) {
+  return W(2, 2) - mu * W.block<1, 2>(2, 0).dot(direction);
+}
 
 Mat3 delassus_block(double mass, const Mat3& inverse_inertia, const Vec3& r) {
   return delassus_block(mass, inverse_inertia, r, r);

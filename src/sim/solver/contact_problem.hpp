@@ -87,6 +87,11 @@ Mat3 delassus_block(double mass, const Mat3& inverse_inertia, const Vec3& r);
 /// W_ij·R, W_ij = 1/m − [r_i]× I⁻¹ [r_j]×.
 Mat3 delassus_block(double mass, const Mat3& inverse_inertia, const Vec3& r_i, const Vec3& r_j);
 
+/// A sliding point's normal compliance under its own friction: how much its normal acceleration grows per
+/// unit of its normal force when that force carries −μ·ŝ of it along the wall, W_nn − μ·W_nt·ŝ (W its
+/// Delassus block, ŝ its slip's direction). Painlevé's case where it is ≤ 0: its own force drives it in.
+double sliding_compliance(const Mat3& W, double mu, const Vec2& direction);
+
 /// The value x_i of point i for (lin, ang).
 Vec3 point_value(const ContactProblem& problem, std::size_t i, const Vec3& lin, const Vec3& ang);
 

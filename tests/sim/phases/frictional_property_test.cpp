@@ -207,5 +207,27 @@ TEST(FrictionalProperty, PainleveImpulsesOfTwoSweepTossesStayInTheCone) {
   }
 }
 
+// Tosses of the sweep that needed a fallback on 514b6f0: three stalled at Painlevé's dynamic jam (μ > 1.5,
+// a sliding point's normal force diverging as its compliance under its own friction went to zero, the
+// integrator's steps shrinking until the phase handed over) and six hit the rounds' bound at a landing on
+// two corners (each one-point impact driving the other corner in: an endless trade of ever smaller
+// impacts). The jam is an impact without collision now (counted as Painlevé's) and the corners strike
+// together: every property holds and neither needs a fallback.
+TEST(FrictionalProperty, DynamicJamsAndTwoCornerLandingsNeedNoFallback) {
+  for (const std::uint64_t index : {106u, 939u, 1624u}) {
+    const Toss t = make_toss(index);
+    Totals totals;
+    EXPECT_EQ(check_toss(t, totals), "") << t.describe;
+    EXPECT_EQ(totals.stalled + totals.handovers + totals.bounded, 0) << t.describe;
+    EXPECT_GT(totals.painleve, 0) << t.describe;
+  }
+  for (const std::uint64_t index : {855u, 862u, 1009u, 1364u, 1474u, 1573u}) {
+    const Toss t = make_toss(index);
+    Totals totals;
+    EXPECT_EQ(check_toss(t, totals), "") << t.describe;
+    EXPECT_EQ(totals.stalled + totals.handovers + totals.bounded, 0) << t.describe;
+  }
+}
+
 }  // namespace
 }  // namespace repose::sim
