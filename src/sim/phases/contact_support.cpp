@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../wall/balance.hpp"
 #include "../wall/stability.hpp"
 #include "contact.hpp"
 
@@ -173,9 +174,10 @@ bool Contact::touching_points_hold(const Vec2& g) const {
 
 // With no motion left on a segment of touching points (an edge) whose line passes within the touching
 // tolerance of the centre of mass's projection, the particle is balanced: the weight's moment is round-off.
-// That is an unstable equilibrium, not a rest. Rule (docs/method.md): turn the particle about the edge until
-// its centre of mass is tol::kBalanceOffset·L beyond it, on the side it leans to by round-off (the left of
-// the edge's direction when exactly on it), with no motion; the run then integrates the fall, and its time.
+// That is an unstable equilibrium, not a rest. Rule (docs/method.md, wall/balance.hpp): turn the particle
+// about the edge until its centre of mass is tol::kBalanceOffset·L beyond it, on the side it leans to by
+// round-off (the left of the edge's direction when exactly on it), with no motion; the run then integrates
+// the fall, and its time.
 // The same on a face whose stability margin is 0 to round-off (the centre of mass on its boundary), tipped
 // outwards over that boundary edge. True if it was on a balance (the motion restarts).
 bool Contact::tip_off_edge_balance(const Vec2& g) {
@@ -221,15 +223,11 @@ bool Contact::tip_off_edge_balance(const Vec2& g) {
     }
   }
   const Vec3 pivot = world_vertex(run.q, pivot_vertex);
-  const Vec3 axis(e.x(), e.y(), 0.0);
-  const double height = run.com.z() - pivot.z();
-  const double d = std::hypot(height, lean);
-  const double target = (outward != 0 ? outward : lean < 0 ? -1.0 : 1.0) * run.tol.balance_offset;
-  // A rotation by −α about the edge direction moves the centre of mass to the left by d·sin α.
-  const double alpha = std::asin(target / d) - std::atan2(lean, height);
-  const Quat turn(Eigen::AngleAxisd(-alpha, axis));
-  run.q = (turn * run.q).normalized();
-  set_support({pivot, run.particle.hull.vertices[static_cast<std::size_t>(pivot_vertex)], true, axis},
+  const double side = outward != 0 ? outward : lean < 0 ? -1.0 : 1.0;
+  const BalanceTurn tip =
+      tip_off_turn(run.particle.hull.vertices, run.q, run.com, pivot, e, side, run.tol.balance_offset, touch);
+  run.q = (tip.turn * run.q).normalized();
+  set_support({pivot, run.particle.hull.vertices[static_cast<std::size_t>(pivot_vertex)], true, tip.axis},
               pivot_vertex);
   rot_ = {run.q, Vec3::Zero(), Vec3::Zero()};
   adaptive_.restart = true;

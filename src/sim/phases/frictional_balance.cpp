@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../wall/balance.hpp"
 #include "frictional_contact.hpp"
 #include "rest.hpp"
 
@@ -12,7 +13,7 @@ namespace repose::sim {
 // A still body whose face under the centre of mass is unstable by the paper's test balances on the face's
 // boundary: it is turned about the boundary edge nearest the centre of mass (on the wall) until the centre of
 // mass is balance_offset beyond it, at rest, from where gravity tips it off (the rule the paper's phase
-// applies to an edge balance, contact_support.cpp). True if it was turned.
+// applies to an edge balance, wall/balance.hpp). True if it was turned.
 bool FrictionalContact::tip_off_balance(const Support& support) {
   Run& run = run_;
   const int f = face_under_com(run, support);
@@ -75,30 +76,17 @@ bool FrictionalContact::tip_onto_face(const std::vector<int>& band, int face) {
 }
 
 // Turns the body at rest about the horizontal line through `pivot` normal to `outward` (a unit vector in the
-// wall's plane) until its centre of mass is balance_offset beyond the line along `outward`.
+// wall's plane) until its centre of mass is balance_offset beyond the line along `outward` (the tip-off rule,
+// wall/balance.hpp: the line's direction has `outward` to its left).
 void FrictionalContact::turn_past_line(const Vec3& pivot, const Vec2& outward) {
   Run& run = run_;
-  const double lean = (run.com.head<2>() - pivot.head<2>()).dot(outward);
-  // A turn by α about ẑ × n moves the centre of mass outward: lean(α) = d·sin(α + atan2(lean, h)).
-  const double height = run.com.z() - pivot.z(), d = std::hypot(height, lean);
-  double alpha = std::asin(std::min(1.0, run.tol.balance_offset / d)) - std::atan2(lean, height);
-  // No vertex is turned below the wall: a vertex at (x, z) from the line (x along `outward`) goes to
-  // z·cos α − x·sin α; the turn stops where the first reaches the wall (a new support, from which the next
-  // segment goes on).
-  const double side = alpha >= 0 ? 1.0 : -1.0;
-  for (const Vec3& v : run.particle.hull.vertices) {
-    const Vec3 r = run.com + run.q * v - pivot;
-    const double x = side * r.head<2>().dot(outward), z = r.z(), reach = std::hypot(x, z);
-    if (!(x > 0) || !(reach > 0)) continue;
-    const double limit = std::acos(std::clamp(-pivot.z() / reach, -1.0, 1.0)) - std::atan2(x, z);
-    if (side * alpha > limit) alpha = side * std::max(limit, 0.0);
-  }
+  const BalanceTurn tip =
+      tip_off_turn(run.particle.hull.vertices, run.q, run.com, pivot, Vec2(outward.y(), -outward.x()), 1.0,
+                   run.tol.balance_offset, run.tol.touch);
   run.record.account.rest_losses += kinetic_energy();
   const double height_before = run.com.z();
-  const Vec3 axis = Vec3::UnitZ().cross(Vec3(outward.x(), outward.y(), 0));
-  const Quat turn(Eigen::AngleAxisd(alpha, axis));
-  run.q = (turn * run.q).normalized();
-  run.com = pivot + turn * (run.com - pivot);
+  run.q = (tip.turn * run.q).normalized();
+  run.com = pivot + tip.turn * (run.com - pivot);
   run.record.account.repositioning += run.body.mass * run.params.gravity * (run.com.z() - height_before);
   velocity_ = omega_ = Vec3::Zero();
 }
