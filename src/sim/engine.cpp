@@ -173,7 +173,7 @@ SettleResult Engine::result() const {
   r.bounces = rec.bounces;
   r.energy_start = rec.energy_start;
   r.energy_end = kinetic_energy() + run_.potential_energy();
-  r.smooth = run_.smooth;
+  r.smooth = run_.surface.kind() == SurfaceModel::Kind::smooth;
   r.dt = run_.tol.dt;
   r.unconverged_steps = rec.unconverged;
   r.friction_work = rec.friction_work;

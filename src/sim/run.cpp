@@ -25,8 +25,10 @@ Run::Run(const Particle& p, const SettleParams& prm, const Quat& orientation)
       params(validated(prm)),
       body{p.mass.mass, p.mass.inertia, params.gravity, params.damping},
       tol(make_tolerances(p, params)),
-      smooth(params.smooth == SmoothMode::on ||
-             (params.smooth == SmoothMode::automatic && is_smooth_surface(p))),
+      surface(params.smooth == SmoothMode::on ||
+                      (params.smooth == SmoothMode::automatic && is_smooth_surface(p))
+                  ? SurfaceModel::Kind::smooth
+                  : SurfaceModel::Kind::polyhedral),
       adaptive(params.integrator == Integrator::adaptive),
       trace(std::getenv("REPOSE_TRACE") != nullptr),
       hull_radius(largest_radius(p)) {

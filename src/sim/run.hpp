@@ -11,6 +11,7 @@
 #include "body/dynamics.hpp"
 #include "repose/sim/settle.hpp"
 #include "tolerances.hpp"
+#include "wall/surface_model.hpp"
 
 namespace repose::sim {
 
@@ -49,10 +50,10 @@ struct Run {
   const SettleParams params;
   const Body body;  ///< mass, inertia, gravity, damping
   const Tolerances tol;
-  const bool smooth;         ///< the particle is treated as smooth (one support point, its own rest rule)
-  const bool adaptive;       ///< Integrator::adaptive (else the paper's fixed step)
-  const bool trace;          ///< debugging aid: one line per contact update on stderr (REPOSE_TRACE set)
-  const double hull_radius;  ///< largest distance of a hull vertex from the centre of mass
+  const SurfaceModel surface;  ///< how it meets the wall: polyhedral or smooth (wall/surface_model.hpp)
+  const bool adaptive;         ///< Integrator::adaptive (else the paper's fixed step)
+  const bool trace;            ///< debugging aid: one line per contact update on stderr (REPOSE_TRACE set)
+  const double hull_radius;    ///< largest distance of a hull vertex from the centre of mass
 
   double t = 0;
   double limit = INFINITY;  ///< advance_to(): no step goes past this time

@@ -83,7 +83,7 @@ class Contact {
   /// energy (contact_adaptive_step.cpp); the adaptive steps' event candidates and decision checks rest on it.
   double arc_bound(double h) const;
   /// Whether the decisions take the pose's own contact set (the stability test has passed, adaptive).
-  bool decisions_use_own_set() const { return run_.adaptive && !run_.smooth && finishing_; }
+  bool decisions_use_own_set() const { return run_.adaptive && run_.surface.has_band_events() && finishing_; }
   /// The height above the wall of hull vertex k at the orientation whose rotation matrix has third row r3,
   /// about the current support (the one expression every height test uses, so that they agree to the bit).
   double height_of(const Vec3& r3, int k) const {
@@ -107,14 +107,16 @@ class Contact {
   }
   // Entering and leaving the ε band count as events (they change the contact set) until the stability test
   // has passed. The adaptive integrator then takes the crossings into its contact decisions instead.
-  bool band_events() const { return !run_.smooth && !finishing_; }
+  bool band_events() const { return run_.surface.has_band_events() && !finishing_; }
   bool pierces(std::size_t k, double zk) const { return zk < pierce_level(k); }
   bool enters_band(std::size_t k, double zk) const {
     return band_events() && !in_contact_[k] && zk <= run_.tol.band;
   }
-  // The adaptive integrator's events upward: a contact leaving the ε band, a touching point lifting off.
+  // The adaptive integrator's events upward: a contact leaving the ε band, a touching point lifting off (the
+  // paper's support rules follow the touching set).
   double rise_level(std::size_t k) const {
-    if (run_.adaptive && !run_.smooth && in_contact_[k] == kTouchingPoint) return run_.tol.touch;
+    if (run_.adaptive && run_.surface.has_contact_types() && in_contact_[k] == kTouchingPoint)
+      return run_.tol.touch;
     return band_events() && in_contact_[k] ? run_.tol.band + run_.tol.touch : INFINITY;
   }
   // The lowest height vertex k may reach in a step without an event.

@@ -91,7 +91,7 @@ void Contact::adaptive_step() {
   // single point touches: the contact and touching sets change only at events (after the stability test the
   // contact set enters the decisions instead), the support the rules call for is the one they called for,
   // and neither a rest nor an edge balance (two touching points) can begin.
-  if (keep && !run.smooth && touching_.size() <= 1 && !cached_decision_.hold) {
+  if (keep && run.surface.has_contact_types() && touching_.size() <= 1 && !cached_decision_.hold) {
     quiet_update();
     decision_cached_ = true;
     return;
@@ -103,14 +103,14 @@ void Contact::adaptive_step() {
   const bool finishing_before = finishing_;
   // This step's event candidates reach the band's level (not a smooth particle's, collected to the wall
   // only), for the support they were collected about.
-  const auto band_source = run.smooth ? BandSource::walk : BandSource::step_candidates;
+  const auto band_source = run.surface.has_band_events() ? BandSource::step_candidates : BandSource::walk;
   Outcome out = update(rot_.omega, rot_.omega.cross(run.com - support_.world), false, band_source);
   if (out == Outcome::rest) return;
   // A support chosen from several touching points by the impact law is chosen again at once with the motion
   // it leaves: the choice the paper's fixed step makes one step later, here at dt → 0. (An impact can switch
   // to a line whose motion then lets one of its points lift.)
-  for (int again = 0;
-       again < tol::kRedecisions && !run.smooth && out == Outcome::new_support && touching_.size() >= 2;
+  for (int again = 0; again < tol::kRedecisions && run.surface.has_contact_types() &&
+                      out == Outcome::new_support && touching_.size() >= 2;
        ++again) {
     out = update(rot_.omega, rot_.omega.cross(run.com - support_.world));
     if (out == Outcome::rest) return;
@@ -133,7 +133,7 @@ void Contact::begin_adaptive_step() {
   // The rotation angle the step can sweep, a bound from energy (arc_bound), bounds which vertices can cause
   // an event: a vertex at distance r from the pivot moves by at most arc·r (the support itself never does).
   const double arc = arc_bound(t1 - t0);
-  const double level = run.smooth ? 0.0 : run.tol.band + run.tol.touch;
+  const double level = run.surface.candidate_level(run.tol.band + run.tol.touch);
   // Candidates: the vertices within reach of an event level from where they start, by a walk; their start
   // heights (the baseline of the pierce test) are refreshed. Of those, the ones that can reach one of their
   // own event levels are checked; most steps keep none and look no further.

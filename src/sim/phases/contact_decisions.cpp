@@ -41,7 +41,7 @@ Contact::Decision Contact::decision_at(const Quat& qq, bool with_reach, std::spa
   const Vec2 g(pose.com.x(), pose.com.y());
   Decision d;
   LineFit fit;
-  d.type = run.smooth ? ContactType::point : classify_contact(footprints_, run.tol.rss_threshold, &fit);
+  d.type = run.surface.contact_type(footprints_, run.tol.rss_threshold, &fit);
   double hold_margin = -INFINITY;
   std::size_t hold_corners = 0;
   if (touching_.size() >= 3) {
@@ -50,7 +50,8 @@ Contact::Decision Contact::decision_at(const Quat& qq, bool with_reach, std::spa
     hold_margin = polygon_margin(poly, g);
   }
   d.hold = hold_corners >= 3 && hold_margin > -run.tol.touch;  // touching_points_hold(g)
-  const double stability = !run.smooth && !finishing_ ? stability_margin(contact_points_, g) : -INFINITY;
+  const double stability =
+      run.surface.has_stability_test() && !finishing_ ? stability_margin(contact_points_, g) : -INFINITY;
   d.stable = stability > 0;
   const LineSupport line = support_.line
                                ? line_support(pose, set, contact_points_, support_vertex_, support_.axis)
@@ -73,7 +74,7 @@ Contact::Decision Contact::decision_at(const Quat& qq, bool with_reach, std::spa
       return r > 0 ? r : 0.0;  // (NaN too: no reach)
     };
     d.reach_of.fill(INFINITY);
-    if (!run.smooth && set.size() >= 2)
+    if (run.surface.has_contact_types() && set.size() >= 2)
       d.reach_of[0] =
           reach(std::abs(std::sqrt(fit.rss) - std::sqrt(run.tol.rss_threshold)), std::sqrt(r2_sum));
     // A polygon of fewer than three corners (collinear within the hull's tolerance) holds nothing until the
@@ -175,7 +176,7 @@ double Contact::stability_margin_at(const Quat& qq) {
 // satisfy m_a + m_b + 2·R·|ω|max·(b − a) ≤ 0 cannot hold a pass; others are halved, left first, down to
 // the event resolution (a pass shorter than that is a tangency within round-off: none).
 double Contact::brief_stability_pass(double t0, double t1) {
-  if (run_.smooth || finishing_ || contact_.size() < 3) return -1;
+  if (!run_.surface.has_stability_test() || finishing_ || contact_.size() < 3) return -1;
   const auto& verts = run_.particle.hull.vertices;
   double radius = support_.body.norm();  // the centre of mass's distance from the pivot
   for (int k : contact_)

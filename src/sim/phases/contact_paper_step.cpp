@@ -35,7 +35,7 @@ void Contact::paper_step() {
   next_z_.resize(z_.size());
   heights(next.q, next_z_);
   const double swept = 2 * std::acos(std::min(1.0, std::abs(rot_.q.dot(next.q)))) * reach_radius_;
-  const double level = run.smooth ? 0.0 : run.tol.band;
+  const double level = run.surface.candidate_level(run.tol.band);
   event_candidates_.clear();
   bool event = false;
   for (std::size_t k = 0; k < next_z_.size(); ++k) {

@@ -38,7 +38,8 @@ bool Contact::choose_support(const LineFit& fit, const Vec2& g, const Vec3& omeg
     stop = c.stop;
   };
 
-  if (run.smooth) {
+  if (!run.surface.has_contact_types()) {
+    // A smooth surface turns about its lowest touching point (impact_support.hpp).
     const WallVertex current{support_vertex_, world_vertex(run.q, support_vertex_),
                              verts[static_cast<std::size_t>(support_vertex_)], z_[support_vertex_]};
     take(choose_smooth(impact, touches_, current, g));

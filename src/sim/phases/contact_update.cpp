@@ -75,24 +75,19 @@ Contact::Outcome Contact::update(const Vec3& omega, const Vec3& com_velocity, bo
     footprints_.emplace_back(contact_points_.back().x(), contact_points_.back().y(), 0.0);
   }
   LineFit fit;
-  run.record.set_type(
-      run.smooth ? ContactType::point : classify_contact(footprints_, tol.rss_threshold, &fit), run.t);
+  run.record.set_type(run.surface.contact_type(footprints_, tol.rss_threshold, &fit), run.t);
 
   const Vec2 g(run.com.x(), run.com.y());
-  if (run.smooth) {
-    // Three or more points on the wall around the centre of mass: the discretised surface has landed on a
-    // face and the inelastic impact leaves no motion (this also ends the ever-faster rocking between the
-    // corners of the bottom face). That landing is the only rest: a damped particle creeps onto its facet.
-    if (touching_.size() >= 3 && touching_points_hold(g) && (rest_ = flush_rest(run, support_)))
-      return Outcome::rest;
-  } else {
-    // The paper's test first: a particle that rests at once (landed flat) has passed it too.
-    if (!finishing_ && stability_margin(contact_points_, g) > 0) {
-      finishing_ = true;
-      run.record.stable_time = run.t;
-    }
-    if (touching_points_hold(g) && (rest_ = flush_rest(run, support_))) return Outcome::rest;
+  // The paper's test first: a particle that rests at once (landed flat) has passed it too.
+  if (run.surface.has_stability_test() && !finishing_ && stability_margin(contact_points_, g) > 0) {
+    finishing_ = true;
+    run.record.stable_time = run.t;
   }
+  // The rest: three or more touching points hold the centre of mass. On a smooth surface, which has no
+  // stability test, that landing is the only rest (the discretised surface has landed on a face and the
+  // inelastic impact leaves no motion; this also ends the ever-faster rocking between the corners of the
+  // bottom face): a damped particle creeps onto its facet.
+  if (touching_points_hold(g) && (rest_ = flush_rest(run, support_))) return Outcome::rest;
   // A surface contact turns about the previous rotation axis: the paper's step remembers it at the end of
   // each step (dt before), the adaptive one from the motion just before this update, which the paper's
   // converges to as dt → 0 (its steps are up to 0.05·τ apart).

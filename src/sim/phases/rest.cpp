@@ -56,11 +56,9 @@ std::optional<RestPose> flush_rest(Run& run, const Support& support) {
   run.record.note_depth(-deepest);
   for (int k : face.loop) rest.points.push_back(run.com + run.q * particle.hull.vertices[k]);
   rest.face = best;
-  rest.kind = run.smooth ? RestKind::smooth
-                         : (particle.face_is_flat[static_cast<std::size_t>(best)] ? RestKind::surface
-                                                                                  : RestKind::points);
+  rest.kind = run.surface.rest_kind(particle.face_is_flat[static_cast<std::size_t>(best)]);
   // Whatever the band looked like on the way down, the particle now rests on a face: a surface contact.
-  if (!run.smooth) run.record.set_type(ContactType::surface, run.t);
+  if (run.surface.has_contact_types()) run.record.set_type(ContactType::surface, run.t);
   if (!run.record.phases.empty()) run.record.phases.back().t1 = run.t;
   return rest;
 }
