@@ -29,7 +29,6 @@ Run::Run(const Particle& p, const SettleParams& prm, const Quat& orientation)
                       (params.smooth == SmoothMode::automatic && is_smooth_surface(p))
                   ? SurfaceModel::Kind::smooth
                   : SurfaceModel::Kind::polyhedral),
-      adaptive(params.integrator == Integrator::adaptive),
       trace(std::getenv("REPOSE_TRACE") != nullptr),
       hull_radius(largest_radius(p)) {
   if (!std::isfinite(orientation.norm()) || orientation.norm() < tol::kQuaternionNorm)

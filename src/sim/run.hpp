@@ -51,7 +51,6 @@ struct Run {
   const Body body;  ///< mass, inertia, gravity, damping
   const Tolerances tol;
   const SurfaceModel surface;  ///< how it meets the wall: polyhedral or smooth (wall/surface_model.hpp)
-  const bool adaptive;         ///< Integrator::adaptive (else the paper's fixed step)
   const bool trace;            ///< debugging aid: one line per contact update on stderr (REPOSE_TRACE set)
   const double hull_radius;    ///< largest distance of a hull vertex from the centre of mass
 

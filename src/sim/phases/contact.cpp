@@ -11,7 +11,8 @@ Contact::Contact(Run& run) : run_(run) {
   in_contact_.resize(n);
   walk_visited_.resize(n);
   id_bits_.resize((n + kWordBits - 1) / kWordBits);
-  if (run.adaptive) integrator_.emplace(run.body, run.tol.length, run.params.tolerance, run.tol.dt);
+  if (run.params.integrator == Integrator::adaptive)
+    stepper_.emplace<AdaptiveStepper>(run.body, run.tol.length, run.params.tolerance, run.tol.dt);
 }
 
 std::optional<RestPose> Contact::begin(const Vec3& com_velocity, const Vec3& omega, bool carry) {
@@ -25,18 +26,24 @@ std::optional<RestPose> Contact::begin(const Vec3& com_velocity, const Vec3& ome
     rot_.momentum = momentum_after_switch(run.body, run.q, run.com, omega, com_velocity, support_);
     rot_.omega = omega_from_momentum(run.body, support_, run.q, rot_.momentum);
   }
-  adaptive_.restart = true;
-  adaptive_.restart_step = 0;
+  restart_motion(/*from_rest=*/true);
   update(carry ? omega : Vec3::Zero(), com_velocity);
   return std::exchange(rest_, std::nullopt);
 }
 
 std::optional<RestPose> Contact::step() {
-  if (run_.adaptive)
-    adaptive_step();
+  if (auto* adaptive = std::get_if<AdaptiveStepper>(&stepper_))
+    adaptive_step(*adaptive);
   else
     paper_step();
   return std::exchange(rest_, std::nullopt);
+}
+
+void Contact::restart_motion(bool from_rest) {
+  if (auto* adaptive = std::get_if<AdaptiveStepper>(&stepper_)) {
+    adaptive->next = AdaptiveStepper::Next::restart;
+    if (from_rest) adaptive->restart_step = 0;
+  }
 }
 
 double Contact::kinetic_energy() const { return rotational_energy(run_.body, support_, rot_.q, rot_.omega); }

@@ -9,6 +9,8 @@
 //   contact_update.cpp          after a step: the contact set, Algorithm 1, the paper's stability test
 //   contact_support.cpp         the support the contacts call for, a line's support test, edge balances
 //   contact_walks.cpp           the vertex sets near the wall by walks over the hull's edge graph
+// The two steppers are types (PaperStepper, AdaptiveStepper below), one chosen when the phase is built; how
+// the surface meets the wall is the run's SurfaceModel (wall/surface_model.hpp).
 //
 // Two sets of points drive the method, both over the convex hull's vertices (only they can touch a flat
 // wall):
@@ -25,6 +27,7 @@
 #include <limits>
 #include <optional>
 #include <span>
+#include <variant>
 #include <vector>
 
 #include "../impact/impact_support.hpp"
@@ -61,7 +64,11 @@ class Contact {
   int contact_count() const { return static_cast<int>(contact_.size()); }
   double kinetic_energy() const;  ///< of the rotation about the support, ½ ωᵀ I_O ω
   const Support& support() const { return support_; }
-  bool inside_step() const { return adaptive_.inside; }  ///< stopped inside an adaptive step (advance_to)
+  /// Stopped inside an adaptive step (advance_to).
+  bool inside_step() const {
+    const auto* adaptive = std::get_if<AdaptiveStepper>(&stepper_);
+    return adaptive != nullptr && adaptive->next == AdaptiveStepper::Next::inside;
+  }
 
   /// What the contact update decides from a pose for the current contact and touching sets: the contact
   /// type (Algorithm 1), whether the touching points hold the centre of mass, whether the paper's stability
@@ -80,10 +87,13 @@ class Contact {
   /// contact set is the pose's own, picked among `candidates` (a superset of the vertices in the band).
   Decision decision_at(const Quat& qq, bool with_reach, std::span<const int> candidates);
   /// A bound (rad) of the angle the particle can turn about its support in the next time h from now, from
-  /// energy (contact_adaptive_step.cpp); the adaptive steps' event candidates and decision checks rest on it.
+  /// energy (contact_adaptive_step.cpp); the adaptive steps' event candidates and decision checks rest on it
+  /// (adaptive runs only).
   double arc_bound(double h) const;
   /// Whether the decisions take the pose's own contact set (the stability test has passed, adaptive).
-  bool decisions_use_own_set() const { return run_.adaptive && run_.surface.has_band_events() && finishing_; }
+  bool decisions_use_own_set() const {
+    return std::holds_alternative<AdaptiveStepper>(stepper_) && run_.surface.has_band_events() && finishing_;
+  }
   /// The height above the wall of hull vertex k at the orientation whose rotation matrix has third row r3,
   /// about the current support (the one expression every height test uses, so that they agree to the bit).
   double height_of(const Vec3& r3, int k) const {
@@ -113,10 +123,9 @@ class Contact {
     return band_events() && !in_contact_[k] && zk <= run_.tol.band;
   }
   // The adaptive integrator's events upward: a contact leaving the ε band, a touching point lifting off (the
-  // paper's support rules follow the touching set).
+  // paper's support rules follow the touching set). Adaptive steps only.
   double rise_level(std::size_t k) const {
-    if (run_.adaptive && run_.surface.has_contact_types() && in_contact_[k] == kTouchingPoint)
-      return run_.tol.touch;
+    if (run_.surface.has_contact_types() && in_contact_[k] == kTouchingPoint) return run_.tol.touch;
     return band_events() && in_contact_[k] ? run_.tol.band + run_.tol.touch : INFINITY;
   }
   // The lowest height vertex k may reach in a step without an event.
@@ -129,19 +138,47 @@ class Contact {
   EventFlags paper_event_at(const Quat& qq) const;
   EventFlags adaptive_event_at(const Quat& qq) const;
   double event_margin(const Quat& qq) const;
+
+  // ---- the steppers: one is chosen from SettleParams::integrator when the phase is built (stepper_)
+  // The paper's fixed step (Eqs 10-16): every event bracketed by halving; after a step every vertex's
+  // height is known (z_), and the vertex sets are found by scans.
+  struct PaperStepper {};
+  // The adaptive Dormand–Prince step: events located on its dense output, the vertex sets found by walks over
+  // the hull. It owns its integrator and where its stepping stands.
+  struct AdaptiveStepper {
+    AdaptiveStepper(const Body& body, double length, double tolerance, double max_step)
+        : integrator(body, length, tolerance, max_step) {}
+    RotationIntegrator integrator;
+    // What the next call does: start the integrator afresh (the support or the motion changed), take a new
+    // integrator step, resume the last one after an event that changed no support, or go on inside the
+    // current one (stopped in it by advance_to()).
+    enum class Next { restart, new_step, resume, inside } next = Next::restart;
+    // What ends the current step: the integrator's step, an event, or an event at which a point entered the
+    // ε band (which lets the update choose a new support, contact_support.cpp).
+    enum class End { step, event, band_entry } ends = End::step;
+    double end = 0;           // the current step's first event, or its end
+    double restart_step = 0;  // the first trial step of a restart (0: from rest, a short one)
+    double min_moment = 1;    // the smallest moment of inertia about the current support (arc_bound)
+    // The contact decisions at the last step's end when they are known (it ended without an event); kept for
+    // the next step's start while the update changes nothing they depend on.
+    std::optional<Decision> decision;
+  };
   void paper_step();
-  void adaptive_step();
-  void begin_adaptive_step();
-  double locate_step_event(double lo, double hi, const EventFlags& at_hi);
+  void adaptive_step(AdaptiveStepper& step);
+  void begin_adaptive_step(AdaptiveStepper& step);
+  double locate_step_event(AdaptiveStepper& step, double lo, double hi, const EventFlags& at_hi);
+  // The support or the motion changed: the adaptive integrator starts afresh (from rest: with its short first
+  // trial step).
+  void restart_motion(bool from_rest);
   double smallest_moment() const;
   std::array<double, 2> rate_coefficients() const;
   double rate_bound(double h) const;
 
   // ---- decisions (contact_decisions.cpp)
   bool contact_set_holds(double arc) const;
-  void locate_decision_change(double t0, double t_end, std::span<const double> inner);
+  void locate_decision_change(AdaptiveStepper& step, double t0, double t_end, std::span<const double> inner);
   double stability_margin_at(const Quat& qq);
-  double brief_stability_pass(double t0, double t1);
+  double brief_stability_pass(const AdaptiveStepper& step, double t0, double t1);
 
   // ---- the update after a step (contact_update.cpp)
   // Where the update finds the band: by a walk, or among the step's event candidates (which hold every
@@ -184,26 +221,11 @@ class Contact {
   Support support_;
   int support_vertex_ = -1;
   Rotation rot_;
-  double reach_radius_ = 0;   // largest distance of a hull vertex from the current support
-  double min_moment_ = 1;     // adaptive: the smallest moment of inertia about the current support
-  bool finishing_ = false;    // the paper's stability test has passed (at record.stable_time)
-  bool band_entered_ = true;  // a point entered the ε band in the last step (or contact just began)
-  bool has_prev_axis_ = false;
-  Vec3 prev_axis_ = Vec3::UnitX();
-  // The adaptive integrator and where its stepping stands.
-  std::optional<RotationIntegrator> integrator_;
-  struct AdaptiveStep {
-    bool restart = true;      // the support or the motion changed, so the integrator starts afresh
-    bool inside = false;      // inside an integrator step (stopped in it by advance_to())
-    bool resume = false;      // the next step resumes the integrator's last one (after an event)
-    double restart_step = 0;  // the first trial step of a restart (0: from rest, a short one)
-    double end = 0;           // the current step's first event, or its end
-    bool event = false, band_entered = false;
-  } adaptive_;
-  // The contact decisions at the current step's start, when known.
-  Decision cached_decision_;
-  bool decision_cached_ = false;     // (set when the last update changed nothing they depend on)
-  bool end_decision_known_ = false;  // the last step ended without an event, its end decisions known
+  double reach_radius_ = 0;        // largest distance of a hull vertex from the current support
+  bool finishing_ = false;         // the paper's stability test has passed (at record.stable_time)
+  bool band_entered_ = true;       // a point entered the ε band in the last step (or contact just began)
+  std::optional<Vec3> prev_axis_;  // the last rotation axis (a surface contact turns about it), once known
+  std::variant<PaperStepper, AdaptiveStepper> stepper_;
   // The vertex sets. `z_` holds heights of the vertices of the last walk or scan only (the contact set, the
   // last step's candidates; every vertex with the paper's integrator).
   static constexpr char kTouchingPoint = 2;

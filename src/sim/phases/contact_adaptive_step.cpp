@@ -33,7 +33,8 @@ double Contact::smallest_moment() const {
 std::array<double, 2> Contact::rate_coefficients() const {
   const double k0 = kinetic_energy() + run_.tol.energy_margin;
   const Body& body = run_.body;
-  return {2 * k0 / min_moment_, 2 * body.mass * run_.params.gravity * support_.body.norm() / min_moment_};
+  const double min_moment = std::get<AdaptiveStepper>(stepper_).min_moment;
+  return {2 * k0 / min_moment, 2 * body.mass * run_.params.gravity * support_.body.norm() / min_moment};
 }
 
 double Contact::arc_bound(double h) const {
@@ -50,50 +51,47 @@ double Contact::rate_bound(double h) const {
 // One adaptive step, or the part of it before its first event, then the contact update at its end. The
 // step and its first event are found once, over the whole step, so advance_to() can stop inside it (the
 // state there is only interpolated, with no contact decision) without changing the run.
-void Contact::adaptive_step() {
+void Contact::adaptive_step(AdaptiveStepper& step) {
+  using Next = AdaptiveStepper::Next;
   Run& run = run_;
-  AdaptiveStep& step = adaptive_;
-  if (step.restart) {
+  if (step.next == Next::restart) {
     // After an event the motion goes on at the pace the error control had reached, so it restarts from the
     // proposed step; from rest (the first contact, a tip off a balance) it tries the first step. Either, if
     // too long, is rejected and shortened by the error control.
     const double first = step.restart_step > 0 ? step.restart_step : run.tol.first_step;
-    integrator_->start(support_, rot_, run.t, std::min(run.tol.dt, first));
-    min_moment_ = smallest_moment();
-    step.restart = false;
-    step.inside = false;
-    step.resume = false;
+    step.integrator.start(support_, rot_, run.t, std::min(run.tol.dt, first));
+    step.min_moment = smallest_moment();
+    step.next = Next::new_step;
   }
-  if (!step.inside) begin_adaptive_step();
+  if (step.next != Next::inside) begin_adaptive_step(step);
   const double end = std::min({step.end, run.tol.max_time, run.limit});
   if (end < step.end) {  // stopped inside the step by advance_to() or the time limit
-    rot_ = integrator_->state_at(end);
+    rot_ = step.integrator.state_at(end);
     run.q = rot_.q;
     run.com = com_position(support_, run.q);
     run.t = end;
     return;
   }
-  step.inside = false;
-  band_entered_ = step.band_entered;
+  band_entered_ = step.ends == AdaptiveStepper::End::band_entry;
   // After an event the rest of the integrator's step is still the motion, unless the update below changes
   // the support (which restarts the integrator): the next step resumes there.
-  step.resume = step.event;
-  step.restart_step = integrator_->proposed_step();
-  rot_ = integrator_->state_at(step.end);
+  step.next = step.ends == AdaptiveStepper::End::step ? Next::new_step : Next::resume;
+  step.restart_step = step.integrator.proposed_step();
+  rot_ = step.integrator.state_at(step.end);
   run.q = rot_.q;
   run.com = com_position(support_, run.q);
   run.t = step.end;
   ++run.steps;
   // The decisions found at this step's end hold at the next step's start if the update changes nothing they
   // depend on (the same contact and touching points, support and phase): then they are not recomputed.
-  const bool keep = end_decision_known_;
+  const std::optional<Decision> known = std::exchange(step.decision, std::nullopt);
   // A step without an event whose decisions did not change leaves the update nothing to decide while a
   // single point touches: the contact and touching sets change only at events (after the stability test the
   // contact set enters the decisions instead), the support the rules call for is the one they called for,
   // and neither a rest nor an edge balance (two touching points) can begin.
-  if (keep && run.surface.has_contact_types() && touching_.size() <= 1 && !cached_decision_.hold) {
+  if (known && run.surface.has_contact_types() && touching_.size() <= 1 && !known->hold) {
     quiet_update();
-    decision_cached_ = true;
+    step.decision = known;
     return;
   }
   decision_contact_.assign(contact_.begin(), contact_.end());
@@ -115,21 +113,20 @@ void Contact::adaptive_step() {
     out = update(rot_.omega, rot_.omega.cross(run.com - support_.world));
     if (out == Outcome::rest) return;
   }
-  decision_cached_ = keep && !step.restart && contact_ == decision_contact_ &&
-                     touching_ == decision_touching_ && support_vertex_ == vertex_before &&
-                     support_.line == support_before.line && support_.axis == support_before.axis &&
-                     support_.world == support_before.world && finishing_ == finishing_before;
+  if (known && step.next != Next::restart && contact_ == decision_contact_ &&
+      touching_ == decision_touching_ && support_vertex_ == vertex_before &&
+      support_.line == support_before.line && support_.axis == support_before.axis &&
+      support_.world == support_before.world && finishing_ == finishing_before)
+    step.decision = known;
 }
 
 // Takes one integrator step from t, or resumes the last one after an event that changed no support, and
 // finds its first event (step.end: the event, or the step's end).
-void Contact::begin_adaptive_step() {
+void Contact::begin_adaptive_step(AdaptiveStepper& step) {
   Run& run = run_;
-  AdaptiveStep& step = adaptive_;
-  if (!step.resume || integrator_->time() <= run.t) integrator_->step();
-  step.resume = false;
-  step.inside = true;
-  const double t0 = run.t, t1 = integrator_->time();
+  if (step.next != AdaptiveStepper::Next::resume || step.integrator.time() <= run.t) step.integrator.step();
+  step.next = AdaptiveStepper::Next::inside;
+  const double t0 = run.t, t1 = step.integrator.time();
   // The rotation angle the step can sweep, a bound from energy (arc_bound), bounds which vertices can cause
   // an event: a vertex at distance r from the pivot moves by at most arc·r (the support itself never does).
   const double arc = arc_bound(t1 - t0);
@@ -164,16 +161,15 @@ void Contact::begin_adaptive_step() {
   EventFlags at_first;
   if (!packed.offset.empty())
     for (int i = 1; i <= tol::kEventSamples && first < 0; ++i)
-      if ((at_first = adaptive_event_at(integrator_->orientation_at(times[i]))).any) first = i;
+      if ((at_first = adaptive_event_at(step.integrator.orientation_at(times[i]))).any) first = i;
   step.end = t1;
-  step.event = first > 0;
-  step.band_entered = false;
-  if (!step.event) {
-    locate_decision_change(t0, t1, std::span(times).subspan(1, tol::kEventSamples - 1));
+  step.ends = first > 0 ? AdaptiveStepper::End::event : AdaptiveStepper::End::step;
+  if (first <= 0) {
+    locate_decision_change(step, t0, t1, std::span(times).subspan(1, tol::kEventSamples - 1));
     return;
   }
-  const double before_event = locate_step_event(times[first - 1], times[first], at_first);
-  locate_decision_change(t0, before_event, std::span(times).subspan(1, first - 1));
+  const double before_event = locate_step_event(step, times[first - 1], times[first], at_first);
+  locate_decision_change(step, t0, before_event, std::span(times).subspan(1, first - 1));
 }
 
 // The first event in [lo, hi] (none at lo, one at hi), over the vertices that can reach an event level in
@@ -181,7 +177,7 @@ void Contact::begin_adaptive_step() {
 // after a band event, just before a vertex reaches the wall. Only an entry counts as "a point entered the
 // band" for the choice of support (a point that leaves it does not), and not once the stability test has
 // passed. Returns the bracket's lower end, the last instant known to be before the event.
-double Contact::locate_step_event(double lo, double hi, const EventFlags& at_hi) {
+double Contact::locate_step_event(AdaptiveStepper& step, double lo, double hi, const EventFlags& at_hi) {
   EventSearch search;
   search.resolution = (hi - lo) * (kEventResolution * tol::kEventSamples);  // the bracket is 1/8 of the step
   search.max_halvings = kMaxHalvings;
@@ -192,14 +188,14 @@ double Contact::locate_step_event(double lo, double hi, const EventFlags& at_hi)
   const Located at = locate(
       lo, hi, search,
       [&](double s) {
-        const EventFlags e = adaptive_event_at(integrator_->orientation_at(s));
+        const EventFlags e = adaptive_event_at(step.integrator.orientation_at(s));
         if (e.any) std::tie(held_at, held) = std::pair{s, e};
         return e.any;
       },
-      monotone, [&](double s) { return event_margin(integrator_->orientation_at(s)); });
-  const EventFlags flags = held_at == at.hi ? held : adaptive_event_at(integrator_->orientation_at(at.hi));
-  adaptive_.band_entered = !flags.pierced && flags.entered && !finishing_;
-  adaptive_.end = flags.pierced ? at.lo : at.hi;
+      monotone, [&](double s) { return event_margin(step.integrator.orientation_at(s)); });
+  const EventFlags flags = held_at == at.hi ? held : adaptive_event_at(step.integrator.orientation_at(at.hi));
+  if (!flags.pierced && flags.entered && !finishing_) step.ends = AdaptiveStepper::End::band_entry;
+  step.end = flags.pierced ? at.lo : at.hi;
   return at.lo;
 }
 

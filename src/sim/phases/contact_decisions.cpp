@@ -105,20 +105,24 @@ bool Contact::contact_set_holds(double arc) const {
 
 // If the contact decisions at `t_end` differ from those at the step's start `t0`, the step is cut just after
 // the first change: the contact update then decides there, as the paper's fixed step does at dt → 0.
-void Contact::locate_decision_change(double t0, double t_end, std::span<const double> inner) {
-  const Decision start = decision_cached_ ? cached_decision_ : decision_at(rot_.q, true, event_candidates_);
-  decision_cached_ = false;
+void Contact::locate_decision_change(AdaptiveStepper& step, double t0, double t_end,
+                                     std::span<const double> inner) {
+  const Decision start = step.decision ? *step.decision : decision_at(rot_.q, true, event_candidates_);
+  // The decisions at the step's end are known (step.decision) only if it ends without an event.
+  step.decision.reset();
+  const bool to_step_end = step.ends == AdaptiveStepper::End::step;
   // A step too short to turn the particle by the decisions' reach cannot change them: no check inside it,
   // and the end's reach is what is left of the start's.
   const double arc = arc_bound(t_end - t0);
   if (arc < start.reach() && contact_set_holds(arc)) {
-    cached_decision_ = start;
-    for (double& r : cached_decision_.reach_of) r -= arc;
-    end_decision_known_ = !adaptive_.event;
+    if (to_step_end) {
+      step.decision = start;
+      for (double& r : step.decision->reach_of) r -= arc;
+    }
     return;
   }
   const auto differs = [&](double s) {
-    return !(decision_at(integrator_->orientation_at(s), false, event_candidates_) == start);
+    return !(decision_at(step.integrator.orientation_at(s), false, event_candidates_) == start);
   };
   // The step's inner sample instants first, so that a decision that changes and changes back within the
   // step (the stability test passing for a moment) is still seen; then its end.
@@ -135,28 +139,23 @@ void Contact::locate_decision_change(double t0, double t_end, std::span<const do
     lo = ts;
   }
   if (!changed) {
-    const Decision end = decision_at(integrator_->orientation_at(t_end), true, event_candidates_);
-    end_decision_known_ = !adaptive_.event && end == start;
-    const double pass = end == start && !start.stable ? brief_stability_pass(t0, t_end) : -1;
+    const Decision end = decision_at(step.integrator.orientation_at(t_end), true, event_candidates_);
+    const double pass = end == start && !start.stable ? brief_stability_pass(step, t0, t_end) : -1;
     if (end == start && pass < 0) {
-      cached_decision_ = end;
+      if (to_step_end) step.decision = end;
       return;
     }
     if (pass >= 0) {  // the test passed for a moment between the checks: located like any change
       hi = pass;
       lo = t0;
-      end_decision_known_ = false;
     }
-  } else {
-    end_decision_known_ = false;
   }
   EventSearch search;
   search.resolution = (t_end - t0) * kEventResolution;
   search.max_halvings = kMaxHalvings;
   search.hi_holds_known = true;
-  adaptive_.end = locate(lo, hi, search, differs, monotone).hi;
-  adaptive_.event = true;
-  adaptive_.band_entered = false;
+  step.end = locate(lo, hi, search, differs, monotone).hi;
+  step.ends = AdaptiveStepper::End::event;
 }
 
 // The paper's stability margin (contact_update.cpp) at orientation qq for the current contact set.
@@ -175,7 +174,7 @@ double Contact::stability_margin_at(const Quat& qq) {
 // so the margin is Lipschitz with constant 2·R·|ω|max (rate_bound). An interval whose end margins m_a, m_b
 // satisfy m_a + m_b + 2·R·|ω|max·(b − a) ≤ 0 cannot hold a pass; others are halved, left first, down to
 // the event resolution (a pass shorter than that is a tangency within round-off: none).
-double Contact::brief_stability_pass(double t0, double t1) {
+double Contact::brief_stability_pass(const AdaptiveStepper& step, double t0, double t1) {
   if (!run_.surface.has_stability_test() || finishing_ || contact_.size() < 3) return -1;
   const auto& verts = run_.particle.hull.vertices;
   double radius = support_.body.norm();  // the centre of mass's distance from the pivot
@@ -187,7 +186,7 @@ double Contact::brief_stability_pass(double t0, double t1) {
   const auto margin = [&](double s) {
     for (auto it = margin_samples_.rbegin(); it != margin_samples_.rend(); ++it)
       if (it->first == s) return it->second;
-    const double m = stability_margin_at(integrator_->orientation_at(s));
+    const double m = stability_margin_at(step.integrator.orientation_at(s));
     margin_samples_.emplace_back(s, m);
     return m;
   };

@@ -59,13 +59,13 @@ bool Contact::choose_support(const LineFit& fit, const Vec2& g, const Vec3& omeg
     const bool line = type != ContactType::point && !keep_point;
     if (keep_line)
       axis = support_.axis;
-    else if (type == ContactType::surface && has_prev_axis_ &&
-             std::hypot(prev_axis_.x(), prev_axis_.y()) > tol::kHorizontalAxis)
+    else if (type == ContactType::surface && prev_axis_ &&
+             std::hypot(prev_axis_->x(), prev_axis_->y()) > tol::kHorizontalAxis)
       // The hinge lies in the wall, as the fitted line does (a tilted one would hold the particle above
       // it): the previous axis's direction on the wall. A turn about the vertical (a tossed, spinning
       // particle) gives none, and the fitted line serves; about a near-vertical hinge through one touching
       // point a spinning die hung, its damped spin dying out, until the time limit.
-      axis = Vec3(prev_axis_.x(), prev_axis_.y(), 0);
+      axis = Vec3(prev_axis_->x(), prev_axis_->y(), 0);
     if (line && line_support(Pose{run.q, run.com}, contact_, contact_points_, o, axis).holds) {
       line_at(o, axis);
     } else {
@@ -92,7 +92,7 @@ bool Contact::choose_support(const LineFit& fit, const Vec2& g, const Vec3& omeg
   rot_.q = run.q;
   rot_.momentum = momentum;
   rot_.omega = omega_from_momentum(run.body, support_, run.q, momentum);
-  adaptive_.restart = true;
+  restart_motion(/*from_rest=*/false);
   remember_axis(rot_.omega);
   return true;
 }
@@ -148,13 +148,10 @@ Contact::LineSupport Contact::line_support(const Pose& pose, std::span<const int
 }
 
 void Contact::remember_axis(const Vec3& omega) {
-  if (support_.line) {
+  if (support_.line)
     prev_axis_ = support_.axis;
-    has_prev_axis_ = true;
-  } else if (omega.norm() > run_.tol.axis_rate) {
+  else if (omega.norm() > run_.tol.axis_rate)
     prev_axis_ = omega.normalized();
-    has_prev_axis_ = true;
-  }
 }
 
 std::vector<Vec2> Contact::touching_polygon(const Quat& q) const {
@@ -231,8 +228,7 @@ bool Contact::tip_off_edge_balance(const Vec2& g) {
   set_support({pivot, run.particle.hull.vertices[static_cast<std::size_t>(pivot_vertex)], true, tip.axis},
               pivot_vertex);
   rot_ = {run.q, Vec3::Zero(), Vec3::Zero()};
-  adaptive_.restart = true;
-  adaptive_.restart_step = 0;
+  restart_motion(/*from_rest=*/true);
   note_penetration();
   remember_axis(rot_.omega);
   return true;

@@ -26,7 +26,7 @@ Contact::Outcome Contact::update(const Vec3& omega, const Vec3& com_velocity, bo
   // happened to end while it hovered, which made the two integrators' contact sets differ (issue 12's
   // convergence check). Once the stability test has passed the set is the pose's own (no band events).
   const bool joins_to_margin = !band_events() || band_entered_ || contact_.empty();
-  if (run.adaptive) {
+  if (std::holds_alternative<AdaptiveStepper>(stepper_)) {
     // Only the vertices near the wall: picked from the step's event candidates when they hold the band
     // (the step's first update, before any change of support), else by a walk (the lowest vertex is among
     // them). Both give the same set, in index order.
@@ -91,7 +91,7 @@ Contact::Outcome Contact::update(const Vec3& omega, const Vec3& com_velocity, bo
   // A surface contact turns about the previous rotation axis: the paper's step remembers it at the end of
   // each step (dt before), the adaptive one from the motion just before this update, which the paper's
   // converges to as dt → 0 (its steps are up to 0.05·τ apart).
-  if (run.adaptive) remember_axis(omega);
+  if (std::holds_alternative<AdaptiveStepper>(stepper_)) remember_axis(omega);
   bool switched = choose_support(fit, g, omega, com_velocity);
   // An edge balance with no motion is left by the documented rule (contact_support.cpp), on a smooth surface
   // too: otherwise only round-off would tip it, after a time no model sets.
@@ -153,7 +153,7 @@ double Contact::stability_margin(const std::vector<Vec3>& points, const Vec2& g)
 // paper's integrator refreshes every height (its next step reads them); the adaptive one walks to the
 // lowest vertex.
 void Contact::note_penetration() {
-  if (run_.adaptive) {
+  if (std::holds_alternative<AdaptiveStepper>(stepper_)) {
     run_.record.note_depth(-lowest_height());
     return;
   }
