@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "../events/events.hpp"
+#include "../events/wall_crossing.hpp"
 #include "contact.hpp"
 
 namespace repose::sim {
@@ -154,9 +155,7 @@ void Contact::begin_adaptive_step(AdaptiveStepper& step) {
     }
   }
   // The dense output at evenly spaced instants: the first at which an event holds brackets it.
-  std::array<double, tol::kEventSamples + 1> times;
-  for (int i = 0; i <= tol::kEventSamples; ++i)
-    times[i] = i == tol::kEventSamples ? t1 : t0 + (t1 - t0) * i / tol::kEventSamples;
+  const auto times = sample_times(t0, t1);  // the wall-crossing search's grid (events/wall_crossing.hpp)
   int first = -1;
   EventFlags at_first;
   if (!packed.offset.empty())

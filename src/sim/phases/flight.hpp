@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "../events/wall_crossing.hpp"
 #include "../integrate/rotation_integrator.hpp"
 #include "../run.hpp"
 
@@ -65,11 +66,7 @@ class Flight {
   double step_end_ = -INFINITY;
   double touch_ = INFINITY;
   double inertia_min_ = 0;  // the body's smallest principal moment (the touch search's bound)
-  // The touch search's working memory, kept from search to search: the hull vertices that may reach the
-  // wall in the step, and a few cached samples of their heights and vertical speeds.
-  std::vector<std::size_t> candidates_;
-  std::vector<double> samples_;
-  std::array<double, tol::kFlightCachedSamples> sample_time_{};
+  WallCrossing wall_;       // the touch search, with its working memory kept from step to step
 };
 
 }  // namespace repose::sim

@@ -20,6 +20,7 @@
 #include <variant>
 #include <vector>
 
+#include "../events/wall_crossing.hpp"
 #include "../integrate/body_integrator.hpp"
 #include "../run.hpp"
 #include "../solver/contact_forces.hpp"
@@ -110,6 +111,8 @@ class FrictionalContact {
   std::vector<int> sliding_before_;         // and those sliding
   ContactForces forces_;                    // at the segment's start
   std::vector<Vec3> warm_start_;            // forces_' forces, where the sweeps of the rates start
+  WallCrossing wall_;                       // the touch search, its working memory kept from step to step
+  std::vector<char> on_wall_;  // by hull vertex: in active_ (its level: the drift it may sink by)
   double step_end_ = -INFINITY;
   double event_ = INFINITY;
   bool started_ = false;
