@@ -138,7 +138,7 @@ inline constexpr int kEventSamples = 8;
 /// velocities between the step's event samples: the dense output is smooth to the integrator's tolerance
 /// within a step of fixed contact rules, and its rates vary within an eighth of a step by far less than a
 /// factor 2 (the 2,000-toss sweep: no vertex deeper than 1e-9·L, the same fallbacks as the 8 samples' Hermite
-/// dip test it replaced, in 53 s instead of 181 s).
+/// dip test it replaced).
 inline constexpr double kAccelerationMargin = 2;
 /// The contact phase: decisions are also checked at every kDecisionStride-th event sample instant; a support
 /// chosen from several touching points is chosen again at once at most kRedecisions times.
