@@ -205,7 +205,8 @@ namespace {
 // a Gauss–Seidel sweep from Newton's reactions changes no value by more than tol::kPolished of the scale (a
 // solution of the exact problem to that accuracy; the sweep's own reactions are kept). Else the pyramid's
 // answer, flagged (ContactSolution::pyramid).
-ContactSolution exact_from_pyramid(const ContactProblem& p, const Vec3& lin, const Vec3& ang,
+ContactSolution exact_from_pyramid(const ContactProblem& p, const std::vector<Mat3>& diagonal,
+                                   const Vec3& lin, const Vec3& ang,
                                    const std::vector<PointCondition>& conditions, ContactSolution pyramid) {
   const bool at_rest = std::any_of(conditions.begin(), conditions.end(),
                                    [](const PointCondition& c) { return c.rule == PointRule::unilateral; });
@@ -213,8 +214,6 @@ ContactSolution exact_from_pyramid(const ContactProblem& p, const Vec3& lin, con
   const std::size_t n = p.arms.size();
   if (n <= tol::kMaxPolishedPoints) {
     if (auto newton = solve_contacts_by_newton(p, lin, ang, conditions, pyramid.reactions)) {
-      std::vector<Mat3> diagonal(n);
-      for (std::size_t i = 0; i < n; ++i) diagonal[i] = delassus_block(p.mass, p.inverse_inertia, p.arms[i]);
       ContactSolution s;
       s.reactions = *newton;
       apply_reactions(p, lin, ang, s);
@@ -270,7 +269,7 @@ ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const V
       // decides Painlevé's case).
       if (s.painleve > 0)
         if (auto pivoted = solve_contacts_by_pivoting(p, lin, ang, conditions))
-          return exact_from_pyramid(p, lin, ang, conditions, *pivoted);
+          return exact_from_pyramid(p, diagonal, lin, ang, conditions, *pivoted);
       return s;
     }
     if (!(largest <= tol::kContactDiverged * p.scale)) break;  // diverging (or not finite)
@@ -291,7 +290,7 @@ ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const V
     }
   }
   if (auto pivoted = solve_contacts_by_pivoting(p, lin, ang, conditions))
-    return exact_from_pyramid(p, lin, ang, conditions, *pivoted);
+    return exact_from_pyramid(p, diagonal, lin, ang, conditions, *pivoted);
   s.converged = false;
   s.solved = false;
   return s;
