@@ -102,10 +102,14 @@ ContactForces contact_forces(const ContactBody& body, const Motion& motion, cons
   const bool all_sliding = std::all_of(conditions.begin(), conditions.end(),
                                        [](const PointCondition& c) { return c.rule == PointRule::sliding; });
   bool no_solution = false;  // decided by enumeration: Painlevé's inconsistent case
-  if (!s.solved && all_sliding && n <= tol::kMaxEnumeratedPoints) {
+  // Enumerated too where the sweeps met a point with no consistent force on its own and Lemke's method
+  // reached no solution: the points together may have one (two corners of a rod's end, each twisted into the
+  // wall by its own friction, hold the end together; PainleveRod.TwoCornersOfASlidingEnd...).
+  if ((!s.solved || s.painleve > 0) && all_sliding && n <= tol::kMaxEnumeratedPoints) {
     if (const auto lambda = enumerate_sliding(problem, lin, ang, conditions)) {
       s.solved = true;
       s.converged = true;
+      s.painleve = 0;
       s.lin = lin;
       s.ang = ang;
       for (std::size_t i = 0; i < n; ++i) {
