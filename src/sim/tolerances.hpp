@@ -67,13 +67,11 @@ inline constexpr double kSlipSpeed = 1e-6;
 /// back below that is at rest (issue 48): without the band a slip of about slip_speed whose direction turns
 /// fast (a tiny slip under a sideways acceleration) alternated between the two rules at every event.
 inline constexpr double kSlipHysteresis = 2;
-/// Painlevé's dynamic jam (Génot & Brogliato 1999): a sliding point whose own friction leaves it at most
-/// kJamCompliance of its frictionless normal compliance (W_nn − μ·W_nt·ŝ ≤ kJamCompliance·W_nn) takes a
-/// normal force that grows without bound as that compliance goes to zero; once the force is kJamForce × m ×
-/// the problem's acceleration scale it stops the slip within |u_t|/(μ·kJamForce·scale), and the jam is
-/// resolved as the impact without collision it tends to (Painlevé's case): the motion that impulse leaves out
-/// is below 1/(μ·kJamForce) of its momentum change. Before, the integrator chased the diverging force with
-/// ever shorter steps until the phase stalled and handed over (3 of 2,000 sweep tosses, all with μ > 1.5).
+/// Painlevé's dynamic jam (Génot & Brogliato 1999): a sliding point with W_nn − μ·W_nt·ŝ ≤
+/// kJamCompliance·W_nn takes a normal force growing without bound as that goes to 0; once it is
+/// kJamForce·m·(the problem's scale) it stops the slip within |u_t|/(μ·kJamForce·scale): resolved as the
+/// impact without collision it tends to, leaving out below 1/(μ·kJamForce) of its momentum change
+/// (docs/method.md; it stalled the phase before).
 inline constexpr double kJamCompliance = 1e-2;
 inline constexpr double kJamForce = 1e3;
 /// × separation_speed: an impact's rebound slower than this is tested for a Zeno capture (the point's normal
