@@ -11,13 +11,15 @@
 //     fallback counted, printed by kind.
 // REPOSE_FRICTION_TOSSES sets the number (default 60 in optimised builds, 6 in debug and sanitizer builds),
 // REPOSE_FRICTION_FIRST the first index, REPOSE_FRICTION_LIST=1 lists the tosses with a hand-over or a
-// bounded round. Measured on 41d5a2d: REPOSE_FRICTION_TOSSES=2000 (32 s): every property holds on 2,000 of
-// 2,000; largest rise 1.6e-9·m·g·L, largest ledger residual 3.8e-7·m·g·L; fallbacks: 2 hand-overs stalled,
-// 17 timed out, 5 bounded rounds, 109 pyramid forces, 0 unsolved, 0 unresolved. REPOSE_FRICTION_TOSSES=20000:
-// 19,999 of 20,000 hold every property; toss 2914 (μ = 0, rocking on an edge for 200·τ, handed over) closes
-// its ledger to 1.0019e-6·m·g·L, beyond the bound by 0.2 % (the integrator's error over its steps); largest
-// rise 2.5e-9·m·g·L; fallbacks: 22 hand-overs stalled, 149 timed out, 71 bounded rounds, 481 pyramid forces,
-// 25 unsolved, 79 unresolved; captures: 804,087 Zeno, 3,836 Painlevé.
+// bounded round. Measured on dac2218: REPOSE_FRICTION_TOSSES=2000 (34 s): every property holds on 2,000 of
+// 2,000; largest rise 1.2e-8·m·g·L, largest ledger residual 3.8e-7·m·g·L; fallbacks: 0 hand-overs stalled
+// (3 on 514b6f0: Painlevé's dynamic jam), 16 timed out (16; every one μ = 0 without damping, a spinning
+// top on a frictionless floor, docs/method.md), 1 bounded round (6: two corners trading impacts; toss
+// 1237: a hold, a two-point impact without collision and an impact cycling), 94 pyramid forces (87),
+// 0 unsolved, 0 unresolved. REPOSE_FRICTION_TOSSES=20000 on 41d5a2d: 19,999 of 20,000 held every property
+// (toss 2914, μ = 0, closed its ledger to 1.0019e-6·m·g·L; 9.98e-7 on dac2218, the integrator's error over
+// 200·τ), fallbacks 22 stalled, 149 timed out, 71 bounded rounds, 481 pyramid, 25 unsolved, 79 unresolved;
+// on 1b2ac0e its first 4,200 tosses listed 43 hand-overs, all timed out at μ = 0, and no bounded round.
 #include <gtest/gtest.h>
 
 #include <cmath>
