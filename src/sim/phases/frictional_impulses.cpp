@@ -36,11 +36,12 @@ bool FrictionalContact::resolve_impacts() {
   // The points leaving the wall from on it (touching, as an approaching point must be to strike) take part:
   // the impact can push them back into it. Struck one at a time, two corners of an edge landing at once
   // traded ever smaller impacts without end (a rod's ends, each rebound driving the other in).
+  const Mat3 R = run.q.toRotationMatrix();
+  const Vec3 up = R.row(2).transpose();  // a vertex's height needs only this row
   for (const Vec3& v : run.particle.hull.vertices) {
-    const Vec3 arm = run.q * v;
-    if (run.com.z() + arm.z() <= tol::kPierceFloor * run.tol.event &&
-        point_velocity(velocity_, omega_, arm).z() > run.tol.speed)
-      arms.push_back(arm);
+    if (run.com.z() + up.dot(v) > tol::kPierceFloor * run.tol.event) continue;
+    const Vec3 arm = R * v;
+    if (point_velocity(velocity_, omega_, arm).z() > run.tol.speed) arms.push_back(arm);
   }
   const double elastic = std::max(run.tol.separation_speed, run.params.restitution_threshold);
   double restitution = fastest > elastic ? run.params.restitution : 0.0;
