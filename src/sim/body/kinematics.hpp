@@ -1,7 +1,6 @@
 // Internal: the rigid body's kinematics, written once (issue 48: the point velocity v + ω × r was written out
 // 19 times, the world inertia R·I·Rᵀ 12). World frame throughout; r is a point's offset from the centre of
-// mass. The impulse and contact blocks built on these (the Delassus matrix K = 1/m − [r]× I⁻¹ [r]×) are in
-// solver/contact_problem.hpp.
+// mass. The Delassus blocks here are what the impact laws and the contact problem build on.
 #pragma once
 
 #include <algorithm>
@@ -74,6 +73,24 @@ inline double energy_minimising_scale(double mass, const Mat3& inertia, const Mo
   for (std::size_t i = 0; i < arms.size(); ++i) a += impulses[i].dot(point_velocity(m, arms[i]));
   const double b = k1 - k0 - a;
   return b > 0 ? std::clamp(-a / (2 * b), 0.0, 1.0) : 0.0;
+}
+
+/// [r]×, the matrix of r × ·.
+inline Mat3 skew(const Vec3& r) {
+  Mat3 x;
+  x << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
+  return x;
+}
+
+/// The off-diagonal Delassus block: a unit impulse (or force) at r_j changes the velocity (or acceleration)
+/// of the point r_i by W_ij·R, W_ij = 1/m − [r_i]× I⁻¹ [r_j]×.
+inline Mat3 delassus_block(double mass, const Mat3& inverse_inertia, const Vec3& r_i, const Vec3& r_j) {
+  return Mat3::Identity() / mass - skew(r_i) * inverse_inertia * skew(r_j);
+}
+
+/// The Delassus block of a point r from the centre of mass: K = 1/m − [r]× I⁻¹ [r]×.
+inline Mat3 delassus_block(double mass, const Mat3& inverse_inertia, const Vec3& r) {
+  return delassus_block(mass, inverse_inertia, r, r);
 }
 
 }  // namespace repose::sim

@@ -14,13 +14,6 @@ namespace {
 
 // What a sweep met: sliding points with no consistent normal reaction, points whose sliding direction was not
 // found.
-// [r]×, the matrix of r × ·.
-Mat3 skew(const Vec3& r) {
-  Mat3 x;
-  x << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
-  return x;
-}
-
 struct Counts {
   int painleve = 0;
   int unresolved = 0;
@@ -183,14 +176,6 @@ double sweep_once(const ContactProblem& p, const std::vector<Mat3>& diagonal,
 
 double sliding_compliance(const Mat3& W, double mu, const Vec2& direction) {
   return W(2, 2) - mu * W.block<1, 2>(2, 0).dot(direction);
-}
-
-Mat3 delassus_block(double mass, const Mat3& inverse_inertia, const Vec3& r) {
-  return delassus_block(mass, inverse_inertia, r, r);
-}
-
-Mat3 delassus_block(double mass, const Mat3& inverse_inertia, const Vec3& r_i, const Vec3& r_j) {
-  return Mat3::Identity() / mass - skew(r_i) * inverse_inertia * skew(r_j);
 }
 
 Vec3 point_value(const ContactProblem& p, std::size_t i, const Vec3& lin, const Vec3& ang) {

@@ -21,6 +21,7 @@
 #include <optional>
 #include <vector>
 
+#include "../body/kinematics.hpp"
 #include "repose/geometry/types.hpp"
 
 namespace repose::sim {
@@ -79,17 +80,10 @@ std::optional<std::vector<Vec3>> solve_contacts_by_newton(const ContactProblem& 
                                                           const std::vector<PointCondition>& conditions,
                                                           const std::vector<Vec3>& start);
 
-/// The Delassus block of a point r from the centre of mass: a unit reaction at r changes that point's
-/// velocity (or acceleration) by K·R, K = 1/m − [r]× I⁻¹ [r]×.
-Mat3 delassus_block(double mass, const Mat3& inverse_inertia, const Vec3& r);
-
-/// The off-diagonal block: a unit reaction at r_j changes the velocity (or acceleration) of the point r_i by
-/// W_ij·R, W_ij = 1/m − [r_i]× I⁻¹ [r_j]×.
-Mat3 delassus_block(double mass, const Mat3& inverse_inertia, const Vec3& r_i, const Vec3& r_j);
-
 /// A sliding point's normal compliance under its own friction: how much its normal acceleration grows per
 /// unit of its normal force when that force carries −μ·ŝ of it along the wall, W_nn − μ·W_nt·ŝ (W its
-/// Delassus block, ŝ its slip's direction). Painlevé's case where it is ≤ 0: its own force drives it in.
+/// Delassus block, body/kinematics.hpp; ŝ its slip's direction). Painlevé's case where it is ≤ 0: its own
+/// force drives it in.
 double sliding_compliance(const Mat3& W, double mu, const Vec2& direction);
 
 /// The value x_i of point i for (lin, ang).
