@@ -34,11 +34,9 @@ double FrictionalContact::locate_event(double a, double b) {
   // start; a point at rest starting to slip (issue 48: it kept the rule of a point at rest until the step
   // ended, sticking while it moved); a point on the wall lifting out of the band (issue 48: the set was
   // fixed for the step, and a point that had lifted could take a force above the wall) or sinking below
-  // its drift; a sliding point
-  // reaching Painlevé's dynamic jam (tolerances.hpp, kJamCompliance): its compliance under its own friction
-  // first, cheap, and only where that is small the forces that decide it.
-  const auto rule_ends = [&](double t) {
-    const BodyState s = integrator_.state_at(t);
+  // its drift; a sliding point reaching Painlevé's dynamic jam (tolerances.hpp, kJamCompliance): its
+  // compliance under its own friction first, cheap, and only where that is small the forces that decide it.
+  const auto rule_ended = [&](const BodyState& s) {
     std::optional<Mat3> inverse_inertia;  // only where a point slides
     bool near_jam = false;
     for (std::size_t i = 0; i < active_.size(); ++i) {
@@ -61,6 +59,7 @@ double FrictionalContact::locate_event(double a, double b) {
     const ContactForces f = forces_at(s);
     return std::any_of(f.inconsistent.begin(), f.inconsistent.end(), [](char c) { return c != 0; });
   };
+  const auto rule_ends = [&](double t) { return rule_ended(integrator_.state_at(t)); };
   // The dense output at the step's event samples: the first at which a rule has ended brackets that event,
   // and the samples' velocities bound the vertices' vertical accelerations over the step.
   const auto times = sample_times(a, b);
@@ -89,7 +88,7 @@ double FrictionalContact::locate_event(double a, double b) {
   // A rule's end before the touch: bisected in the first sample interval at whose end it holds.
   double when = touch;
   for (int i = 1; i <= tol::kEventSamples && times[i - 1] < touch; ++i) {
-    if (!rule_ends(times[i])) continue;
+    if (!rule_ended(states[i])) continue;
     EventSearch search;
     search.resolution = (b - a) * kEventResolution;
     const Located l = locate(times[i - 1], times[i], search, rule_ends, monotone);
