@@ -53,6 +53,8 @@ double secular_root(const Eigen::Matrix2d& A, const Vec2& b, double c0, const Ve
   return 0.5 * (lo + hi);
 }
 
+}  // namespace
+
 // The sliding reaction R = (−p, λ) of one point, p = μ·λ·ŝ, with the slip after it, x_t = b − A·p, along ŝ
 // (friction opposes the slip). Along ŝ means b − A·p = β·p for some β ≥ 0, so p(β) = (A + β·I)⁻¹·b, and the
 // reaction is on the cone's edge, |p| = μ·λ(p) with λ(p) = c0 + c·p: a root in β of the secular equation
@@ -105,6 +107,8 @@ std::optional<Vec3> sliding_reaction(const Mat3& W, const Vec3& f, double mu, do
   const double lambda = std::max(c0 + c.dot(p), 0.0);
   return Vec3(-mu * lambda * s.x(), -mu * lambda * s.y(), lambda);
 }
+
+namespace {
 
 // One point's reaction given its value `f` without it (the others' reactions included) and its own block W of
 // the Delassus matrix (x = f + W·R), by its rule (contact_problem.hpp).

@@ -80,6 +80,12 @@ std::optional<std::vector<Vec3>> solve_contacts_by_newton(const ContactProblem& 
                                                           const std::vector<PointCondition>& conditions,
                                                           const std::vector<Vec3>& start);
 
+/// One point's sliding reaction R = (−μ·λ·ŝ, λ) on the edge of its friction cone, with its slip after it
+/// (x = f + W·R, `f` its value without it, W its Delassus block) along ŝ: a root of the secular equation
+/// (contact_problem.cpp). `given_normal` < 0: the point is unilateral (x_n = 0 after it); else λ is given.
+/// Called where sticking would leave the cone. Empty where the data are not finite (or λ would be < 0).
+std::optional<Vec3> sliding_reaction(const Mat3& W, const Vec3& f, double mu, double given_normal);
+
 /// A sliding point's normal compliance under its own friction: how much its normal acceleration grows per
 /// unit of its normal force when that force carries −μ·ŝ of it along the wall, W_nn − μ·W_nt·ŝ (W its
 /// Delassus block, body/kinematics.hpp; ŝ its slip's direction). Painlevé's case where it is ≤ 0: its own

@@ -233,5 +233,15 @@ TEST(MultiImpact, PointsNearlyAtRestOnATurningBodyEndAsMoreausImpact) {
   }
 }
 
+// An impact the contact problem cannot solve (a velocity that is not finite: neither Gauss–Seidel nor Lemke's
+// method reaches a solution) is flagged not converged, never passed off as a solution.
+TEST(MultiImpact, AnUnsolvedImpactIsFlagged) {
+  for (const double mu : {0.0, 0.5}) {
+    const Motion before{Vec3(NAN, 0, -1), Vec3::Zero()};
+    const MultiImpactOutcome out = collide_points(1.0, kCubeInertia, bottom_corners(), before, {0.0, mu});
+    EXPECT_FALSE(out.converged) << "μ = " << mu;
+  }
+}
+
 }  // namespace
 }  // namespace repose::sim

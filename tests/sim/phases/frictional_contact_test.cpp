@@ -382,8 +382,10 @@ TEST(FrictionalContact, ThrownDownFromTheWallStrikesByTheImpactLaw) {
 // μ > W_nn/W_nt = (1/m + r_x²/I)/(r_x·r_z/I) = 1.575 (I = m·(1 + 0.05²)/12 about y). At μ = 2 the slide ends
 // at once in an impact without collision that stops the foot (Génot & Brogliato's dynamic jam); the impulse
 // at the foot keeps the angular momentum about it, L = m·|r_z|·v0, so the kinetic energy left is
-// L²/(2·I_foot), I_foot = I + m·|r|², the rest lost (1e-9 relative: round-off of a least-norm solve). At
-// μ = 1 the foot slides on, with no such impact.
+// L²/(2·I_foot), I_foot = I + m·|r|², the rest lost (1e-9 relative: round-off of a least-norm solve). The
+// foot edge's two corners jam together, with equal impulses by the rod's mirror symmetry in y, so the
+// record's point (the impulses' centre) is the edge's midpoint, com + r (1e-12·L: round-off of a rotation).
+// At μ = 1 the foot slides on, with no such impact.
 TEST(FrictionalContact, PainleveRodJamsByAnImpactWithoutCollision) {
   const Particle rod = load_particle("box:x=1,y=0.05,z=0.05", 1.0);
   const double m = rod.mass.mass;
@@ -395,11 +397,15 @@ TEST(FrictionalContact, PainleveRodJamsByAnImpactWithoutCollision) {
   const double lost = 0.5 * m - angular_momentum * angular_momentum / (2 * i_foot);
   SettleParams p = sliding_start(Vec3(-1, 0, 0), 2.0);
   p.max_time = 0.05;  // the start is what matters: the first 0.05 s
-  const SettleResult jam = settle(rod, p, q);
+  Settler settler(rod, p, q);
+  const Vec3 com = settler.sample().com;
+  const SettleResult jam = settler.run();
   ASSERT_GE(jam.painleve, 1);
   ASSERT_FALSE(jam.impacts.empty());
   const ImpactRecord& first = jam.impacts.front();
   EXPECT_EQ(first.t, 0.0);
+  EXPECT_EQ(first.points, 2) << "the foot edge's two corners";
+  EXPECT_LT((first.point - (com + r)).norm(), 1e-12) << "the foot edge's midpoint";
   EXPECT_TRUE(first.stick);
   EXPECT_LE(first.tangential_speed_after, 1e-9);
   EXPECT_NEAR(first.energy_before - first.energy_after, lost, 1e-9 * lost);

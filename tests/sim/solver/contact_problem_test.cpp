@@ -127,5 +127,58 @@ TEST(ContactProblem, NewtonsMethodConvergesFromNearASolution) {
   }
 }
 
+// One point's sliding reaction against Coulomb's law written out (not against the secular equation it
+// solves): on the cone's edge, |R_t| = μ·R_n; unilateral, the point's normal value after it 0; and its slip
+// after it, x_t = f_t + (W·R)_t, along −R_t (friction opposes the slip). Blocks of a point mass (W = I/m: the
+// closed form R = (−μ·λ·f̂_t, λ), λ = −m·f_n) and random Delassus blocks; 1e-12 relative: a bracketed root to
+// 4 ulps.
+TEST(SlidingReaction, MeetsCoulombsLawOnTheConesEdge) {
+  const double m = 2, mu = 0.4;
+  const Vec3 f(3, -1, -0.5);
+  const std::optional<Vec3> point = sliding_reaction(Mat3::Identity() / m, f, mu, -1);
+  ASSERT_TRUE(point.has_value());
+  const Vec2 slip = f.head<2>().normalized();
+  EXPECT_LT((*point - Vec3(-mu * m * 0.5 * slip.x(), -mu * m * 0.5 * slip.y(), m * 0.5)).norm(), 1e-12);
+  const std::optional<Vec3> given = sliding_reaction(Mat3::Identity() / m, Vec3(3, -1, 0.7), mu, 0.25);
+  ASSERT_TRUE(given.has_value());
+  EXPECT_LT((*given - Vec3(-mu * 0.25 * slip.x(), -mu * 0.25 * slip.y(), 0.25)).norm(), 1e-12);
+
+  std::mt19937_64 rng(48);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Vec3 arm(u(rng), u(rng), -0.5 + 0.4 * u(rng));
+    const Mat3 inverse_inertia =
+        (Mat3::Identity() * 1.5 + 0.5 * Vec3(u(rng), u(rng), u(rng)).asDiagonal().toDenseMatrix());
+    const Mat3 W = delassus_block(1.0, inverse_inertia, arm);
+    const Vec3 value(3 * u(rng), 3 * u(rng), -0.1 - std::abs(u(rng)));
+    const double friction = 0.05 + std::abs(u(rng));
+    const Vec3 stick = -W.ldlt().solve(value);
+    if (stick.head<2>().norm() <= friction * stick.z()) continue;  // sticks: no sliding reaction asked
+    const std::optional<Vec3> R = sliding_reaction(W, value, friction, -1);
+    ASSERT_TRUE(R.has_value()) << trial;
+    const Vec3 after = value + W * *R;
+    const double scale = value.norm() + (W * *R).norm();
+    EXPECT_NEAR(R->head<2>().norm(), friction * R->z(), 1e-12 * R->norm()) << trial;
+    EXPECT_NEAR(after.z(), 0, 1e-12 * scale) << trial;
+    const Vec2 along = after.head<2>();
+    EXPECT_GE(-along.dot(R->head<2>()), 0) << trial;
+    EXPECT_LE(std::abs(along.x() * R->y() - along.y() * R->x()), 1e-10 * scale * R->norm()) << trial;
+  }
+}
+
+// Data that are not finite have no reaction (the caller then counts the point unresolved): a slip of infinite
+// speed, on a block whose tangential directions are coupled (its slip equation's bracket then runs to
+// infinity and back to NaN), with a finite normal value; and a NaN block.
+TEST(SlidingReaction, DataThatAreNotFiniteHaveNone) {
+  Mat3 W;
+  W << 2, 0.5, 0, 0.5, 1, 0, 0, 0, 1.5;
+  EXPECT_FALSE(sliding_reaction(W, Vec3(INFINITY, 0, -1), 0.5, -1).has_value());
+  EXPECT_FALSE(sliding_reaction(W, Vec3(NAN, 0, -1), 0.5, -1).has_value());
+  EXPECT_FALSE(sliding_reaction(W, Vec3(1, 0, -1), 0.5, NAN).has_value());
+  Mat3 bad = W;
+  bad(0, 1) = NAN;
+  EXPECT_FALSE(sliding_reaction(bad, Vec3(1, 0, -1), 0.5, -1).has_value());
+}
+
 }  // namespace
 }  // namespace repose::sim

@@ -65,43 +65,68 @@ PivotReference pivot_reference(const std::array<Vec3, 3>& arms, double mass, con
   return {x(0), Vec2(x(1), x(2)), Vec3(x(3), x(4), x(5))};
 }
 
-TEST(FaceStickThreshold, TetrahedronTurningAboutABaseVertexSticksAboveTheClosedFormThresholdAndSlidesBelow) {
+// The tetrahedron on its base, its three base vertices' arms from the centroid, the closed-form centroid and
+// inertia (independent of the model's quadrature), and its spin about the pivot (arms[0]): the other two
+// slide along their velocities.
+struct TurningTetrahedron {
   const std::array<Vec3, 4> vertices{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(-0.3, -0.3, 0.6)};
-  const double omega = 4, g = repose::test::kGravitySI;
-  MeshOptions options;
-  options.inertia = InertiaModel::convex;
-  const Particle tetrahedron = make_particle(
-      TriangleMesh{std::vector<Vec3>(vertices.begin(), vertices.end()), {}}, "tetrahedron", 1.0, options);
-  const double mass = tetrahedron.mass.mass;
-  // The closed-form centroid and inertia (independent of the model's quadrature).
-  Vec3 centroid = Vec3::Zero();
-  for (const Vec3& v : vertices) centroid += v / 4;
-  Mat3 second = Mat3::Zero();
-  for (const Vec3& v : vertices) second += mass / 20 * (v - centroid) * (v - centroid).transpose();
-  const Mat3 inertia = second.trace() * Mat3::Identity() - second;
-  ASSERT_LT((tetrahedron.mass.inertia - inertia).norm(), 1e-12 * inertia.norm());
+  Particle particle;
+  double mass = 0;
+  Mat3 inertia = Mat3::Zero();
   std::array<Vec3, 3> arms;
-  for (std::size_t i = 0; i < 3; ++i) arms[i] = vertices[i] - centroid;
 
+  TurningTetrahedron() {
+    MeshOptions options;
+    options.inertia = InertiaModel::convex;
+    particle = make_particle(TriangleMesh{std::vector<Vec3>(vertices.begin(), vertices.end()), {}},
+                             "tetrahedron", 1.0, options);
+    mass = particle.mass.mass;
+    Vec3 centroid = Vec3::Zero();
+    for (const Vec3& v : vertices) centroid += v / 4;
+    Mat3 second = Mat3::Zero();
+    for (const Vec3& v : vertices) second += mass / 20 * (v - centroid) * (v - centroid).transpose();
+    inertia = second.trace() * Mat3::Identity() - second;
+    for (std::size_t i = 0; i < 3; ++i) arms[i] = vertices[i] - centroid;
+  }
   // μ*: the reference's excess falls through zero once on [0.05, 2] for this body (checked at the ends).
-  const auto excess = [&](double mu) {
-    return pivot_reference(arms, mass, inertia, g, omega, mu).excess(mu);
-  };
-  double lo = 0.05, hi = 2;
-  ASSERT_GT(excess(lo), 0);
-  ASSERT_LT(excess(hi), 0);
-  for (int k = 0; k < 100; ++k) (excess(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
-  const double threshold = 0.5 * (lo + hi);
+  double threshold(double g, double omega) const {
+    const auto excess = [&](double mu) {
+      return pivot_reference(arms, mass, inertia, g, omega, mu).excess(mu);
+    };
+    double lo = 0.05, hi = 2;
+    EXPECT_GT(excess(lo), 0);
+    EXPECT_LT(excess(hi), 0);
+    for (int k = 0; k < 100; ++k) (excess(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
+    return 0.5 * (lo + hi);
+  }
+  Motion motion(double omega) const {
+    return {-(omega * Vec3::UnitZ()).cross(arms[0]), omega * Vec3::UnitZ()};
+  }
+  std::vector<PointCondition> conditions(const Motion& motion) const {
+    std::vector<PointCondition> c(3);
+    for (std::size_t k = 1; k < 3; ++k) {
+      c[k].rule = PointRule::sliding;
+      c[k].direction = (motion.velocity + motion.omega.cross(arms[k])).head<2>().normalized();
+    }
+    return c;
+  }
+  std::vector<Vec3> arm_list() const { return {arms.begin(), arms.end()}; }
+};
+
+TEST(FaceStickThreshold, TetrahedronTurningAboutABaseVertexSticksAboveTheClosedFormThresholdAndSlidesBelow) {
+  const double omega = 4, g = repose::test::kGravitySI;
+  const TurningTetrahedron tet;
+  const double mass = tet.mass;
+  const Mat3& inertia = tet.inertia;
+  const auto& arms = tet.arms;
+  ASSERT_LT((tet.particle.mass.inertia - inertia).norm(), 1e-12 * inertia.norm());
+  const double threshold = tet.threshold(g, omega);
   std::cout << "μ* = " << threshold << "\n";
 
-  const ContactBody body{mass, tetrahedron.mass.inertia, g, 0.0};
-  const Motion motion{-(omega * Vec3::UnitZ()).cross(arms[0]), omega * Vec3::UnitZ()};
-  std::vector<PointCondition> conditions(3);
-  for (std::size_t k = 1; k < 3; ++k) {
-    conditions[k].rule = PointRule::sliding;
-    conditions[k].direction = (motion.velocity + motion.omega.cross(arms[k])).head<2>().normalized();
-  }
-  const std::vector<Vec3> arm_list(arms.begin(), arms.end());
+  const ContactBody body{mass, tet.particle.mass.inertia, g, 0.0};
+  const Motion motion = tet.motion(omega);
+  const std::vector<PointCondition> conditions = tet.conditions(motion);
+  const std::vector<Vec3> arm_list = tet.arm_list();
   for (const double factor : {1.02, 0.98}) {
     const double mu = factor * threshold;
     // The face model itself (contact_forces falls back on the complementarity problem where it gives no
@@ -123,6 +148,35 @@ TEST(FaceStickThreshold, TetrahedronTurningAboutABaseVertexSticksAboveTheClosedF
         EXPECT_NEAR(forces.forces[0].head<2>().norm(), mu * forces.forces[0].z(),
                     kPivotForceTolerance * mass * g);
       }
+    }
+  }
+}
+
+// The start of the slip in any units (dimensional analysis, an answer independent of the code): a time unit
+// k^(-1/2) times the second's scales g by k and the spin by k^(1/2), lengths and the mass unchanged; the
+// motion is the same, so the forces scale by k, the slip's direction not at all. Below μ* the pivot starts
+// to slide in a direction found by solving for it; a "no slip acceleration" test that is not relative to g
+// takes any direction as the answer where g is small (k = 1e-8) and none where it is large (k = 1e8).
+TEST(FaceStickThreshold, TheStartOfTheSlipIsTheSameInAnyUnits) {
+  const double omega = 4, g = repose::test::kGravitySI;
+  const TurningTetrahedron tet;
+  const double mu = 0.98 * tet.threshold(g, omega);
+  const auto forces_at = [&](double k) {
+    const Motion motion = tet.motion(omega * std::sqrt(k));
+    const ContactBody body{tet.mass, tet.particle.mass.inertia, k * g, 0.0};
+    return sliding_face(body, motion, tet.arm_list(), mu, tet.conditions(motion));
+  };
+  const std::optional<ContactForces> si = forces_at(1);
+  ASSERT_TRUE(si.has_value());
+  ASSERT_EQ(si->modes[0], ContactMode::slide);
+  for (const double k : {1e-8, 1e8}) {
+    const std::optional<ContactForces> scaled = forces_at(k);
+    ASSERT_TRUE(scaled.has_value()) << "k = " << k;
+    for (std::size_t i = 0; i < 3; ++i) {
+      EXPECT_EQ(scaled->modes[i], si->modes[i]) << "k = " << k << ", point " << i;
+      // Both solves to round-off (condition numbers below 1e3, as above): 1e-9 of m·g.
+      EXPECT_LT((scaled->forces[i] / k - si->forces[i]).norm(), kPivotForceTolerance * tet.mass * g)
+          << "k = " << k << ", point " << i;
     }
   }
 }
