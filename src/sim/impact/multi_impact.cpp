@@ -24,12 +24,13 @@ MultiImpactOutcome collide_points(double mass, const Mat3& inertia, const std::v
   MultiImpactOutcome out;
   // Compression: plastic, with Coulomb at every point. Where no solution was reached (neither Gauss–Seidel
   // nor Lemke's method), or one that would add kinetic energy (an exact one never does: ΔK = P·u⁺ − ½·Pᵀ·W·P
-  // with P·u⁺ = −Σ μ·λ_i·|u_t,i⁺| ≤ 0), the frictionless plastic impact instead, counted as not converged.
+  // with P·u⁺ = −Σ μ·λ_i·|u_t,i⁺| ≤ 0) or is not finite, the frictionless plastic impact instead, counted
+  // as not converged.
   ContactSolution compression =
       solve_contacts(problem, before.velocity, before.omega, std::vector<PointCondition>(n));
   const double energy_before = kinetic_energy(mass, inertia, before);
-  if (!compression.solved || kinetic_energy(mass, inertia, {compression.lin, compression.ang}) >
-                                 energy_before * (1 + tol::kKineticRoundOff)) {
+  if (!compression.solved || !(kinetic_energy(mass, inertia, {compression.lin, compression.ang}) <=
+                               energy_before * (1 + tol::kKineticRoundOff))) {
     ContactProblem frictionless = problem;
     frictionless.friction = 0;
     compression = solve_contacts(frictionless, before.velocity, before.omega, std::vector<PointCondition>(n));

@@ -233,8 +233,8 @@ TEST(MultiImpact, PointsNearlyAtRestOnATurningBodyEndAsMoreausImpact) {
   }
 }
 
-// An impact the contact problem cannot solve (a velocity that is not finite: neither Gauss–Seidel nor Lemke's
-// method reaches a solution) is flagged not converged, never passed off as a solution.
+// An impact whose data are not finite (a NaN velocity: the contact problem's answer is not finite either) is
+// flagged not converged, never passed off as a solution.
 TEST(MultiImpact, AnUnsolvedImpactIsFlagged) {
   for (const double mu : {0.0, 0.5}) {
     const Motion before{Vec3(NAN, 0, -1), Vec3::Zero()};
