@@ -88,6 +88,7 @@ class FrictionalContact {
   // The least-norm impulses at `arms` that bring them to rest (`along`: in every direction, else only across
   // the wall).
   Eigen::VectorXd stopping_impulses(const std::vector<Vec3>& arms, bool along) const;
+  Eigen::VectorXd stopping_impulses_pushing(const std::vector<Vec3>& arms) const;
   BodyRates rates(const BodyState& s) const;
   void count_fallbacks(const ContactForces& f) const;
   ContactForces forces_at(const BodyState& s) const;  // at the segment's points, by their rules

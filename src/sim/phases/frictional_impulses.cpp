@@ -93,6 +93,33 @@ Eigen::VectorXd FrictionalContact::stopping_impulses(const std::vector<Vec3>& ar
   return P;
 }
 
+// The stopping impulses of stopping_impulses(arms, true) with the points that the joint solution would pull
+// left free, one at a time, the most pulled first (at most one round a point); zero at the points left free.
+Eigen::VectorXd FrictionalContact::stopping_impulses_pushing(const std::vector<Vec3>& arms) const {
+  const std::size_t n = arms.size();
+  std::vector<std::size_t> kept(n);
+  for (std::size_t i = 0; i < n; ++i) kept[i] = i;
+  Eigen::VectorXd P = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(n));
+  for (std::size_t round = 0; round < n && !kept.empty(); ++round) {
+    std::vector<Vec3> set;
+    for (std::size_t i : kept) set.push_back(arms[i]);
+    const Eigen::VectorXd Q = stopping_impulses(set, true);
+    std::size_t worst = kept.size();
+    for (std::size_t j = 0; j < kept.size(); ++j)
+      if (Q(3 * static_cast<Eigen::Index>(j) + 2) < 0 &&
+          (worst == kept.size() ||
+           Q(3 * static_cast<Eigen::Index>(j) + 2) < Q(3 * static_cast<Eigen::Index>(worst) + 2)))
+        worst = j;
+    if (worst == kept.size()) {
+      for (std::size_t j = 0; j < kept.size(); ++j)
+        P.segment<3>(3 * static_cast<Eigen::Index>(kept[j])) = Q.segment<3>(3 * static_cast<Eigen::Index>(j));
+      break;
+    }
+    kept.erase(kept.begin() + static_cast<std::ptrdiff_t>(worst));
+  }
+  return P;
+}
+
 // Points at rest on the wall keep a residual velocity (below 2·slip_speed along the wall, below speed across
 // it). Where it drives a point newly at rest (a slide that stopped, a landing) into the wall, the point is
 // stopped by the plastic impact law with Coulomb's friction (collide_points, E = 0: no impulse pulls, every
@@ -183,8 +210,11 @@ bool FrictionalContact::hold_unresolved_hops() {
 // Painlevé's inconsistent case at sliding points (no normal force holds them on the wall): an impact without
 // collision (Génot & Brogliato 1999), the dynamic jam ending in sticking — the impulses at those points, all
 // at once, that stop them (the least-norm ones: an edge's two corners leave the rotation about it free),
-// each kept in its friction cone (a negative normal impulse dropped, a tangential one beyond the cone
-// projected onto it). Counted, and recorded as an impact. True if any point met it.
+// each kept in its friction cone: a point whose normal impulse would pull is left free and the others are
+// stopped again without it (the most pulled first, at most once each: a pulling impulse merely dropped from
+// the joint solution left the others' impulses solved for a stop that no longer happened, a kick that
+// started a hold / jam / impact cycle), and a tangential impulse beyond the cone is projected onto it.
+// Counted, and recorded as an impact. True if any point met it.
 bool FrictionalContact::resolve_painleve() {
   Run& run = run_;
   std::vector<Vec3> arms;
@@ -199,7 +229,7 @@ bool FrictionalContact::resolve_painleve() {
   const double m = run.body.mass;
   const std::size_t n = arms.size();
   const Vec3 before = point_velocity(velocity_, omega_, arms[0]);  // the record's speeds before
-  const Eigen::VectorXd P = stopping_impulses(arms, true);
+  const Eigen::VectorXd P = stopping_impulses_pushing(arms);
   ImpactRecord record;
   record.t = run.t;
   record.points = static_cast<int>(n);

@@ -234,5 +234,18 @@ TEST(FrictionalProperty, DynamicJamsAndTwoCornerLandingsNeedNoFallback) {
   }
 }
 
+// Toss 1237 (μ = 1.88) hit the rounds' bound on 197e4a6 at t = 2.2412: a jam at two sliding points whose
+// joint least-norm stop pulled one of them; that impulse was dropped and the other kept its share of the
+// joint stop, a kick (0.28 of tangential impulse against a slip of 8e-6·sqrt(g·L)) projected onto its cone,
+// which started a hold / jam / impact cycle until the bound. The pulled point is now left free and the other
+// stopped alone: no bounded round, and fewer jams.
+TEST(FrictionalProperty, AJamThatWouldPullOneOfItsPointsStopsTheOthersWithoutIt) {
+  const Toss t = make_toss(1237);
+  Totals totals;
+  EXPECT_EQ(check_toss(t, totals), "") << t.describe;
+  EXPECT_EQ(totals.stalled + totals.handovers + totals.bounded, 0) << t.describe;
+  EXPECT_GT(totals.painleve, 0) << t.describe;
+}
+
 }  // namespace
 }  // namespace repose::sim
