@@ -30,7 +30,8 @@ Run::Run(const Particle& p, const SettleParams& prm, const Quat& orientation)
                   ? SurfaceModel::Kind::smooth
                   : SurfaceModel::Kind::polyhedral),
       trace(std::getenv("REPOSE_TRACE") != nullptr),
-      hull_radius(largest_radius(p)) {
+      hull_radius(largest_radius(p)),
+      near_wall(p.hull) {
   if (!std::isfinite(orientation.norm()) || orientation.norm() < tol::kQuaternionNorm)
     throw Error("orientation must be a finite non-zero quaternion");
   q = orientation.normalized();

@@ -11,6 +11,7 @@
 #include "body/dynamics.hpp"
 #include "repose/sim/settle.hpp"
 #include "tolerances.hpp"
+#include "wall/near_wall.hpp"
 #include "wall/surface_model.hpp"
 
 namespace repose::sim {
@@ -53,6 +54,9 @@ struct Run {
   const SurfaceModel surface;  ///< how it meets the wall: polyhedral or smooth (wall/surface_model.hpp)
   const bool trace;            ///< debugging aid: one line per contact update on stderr (REPOSE_TRACE set)
   const double hull_radius;    ///< largest distance of a hull vertex from the centre of mass
+  /// The hull vertices near the wall by walks of the hull's edge graph (scratch and the last lowest vertex:
+  /// no part of the run's result, hence usable from a phase's const queries).
+  mutable NearWall near_wall;
 
   double t = 0;
   double limit = INFINITY;  ///< advance_to(): no step goes past this time
@@ -62,17 +66,17 @@ struct Run {
   Recorder record;
 
   double potential_energy() const { return body.mass * params.gravity * com.z(); }
-  /// The lowest hull vertex at orientation qq (the first of equals), by a scan of the hull: for the
-  /// moments a phase begins; the contact phase walks the hull's edge graph instead.
+  /// The lowest hull vertex at orientation qq (the first of equals in index order), among the vertices a
+  /// walk of the hull's edge graph finds near the lowest (wall/near_wall.hpp), not a scan of the hull.
   int lowest_vertex(const Quat& qq) const {
     const auto& verts = particle.hull.vertices;
     int lowest = 0;
     double lowest_z = INFINITY;
-    for (std::size_t k = 0; k < verts.size(); ++k) {
-      const double zk = (qq * verts[k]).z();
+    for (int k : near_wall.near_lowest(qq, tol.event)) {
+      const double zk = (qq * verts[static_cast<std::size_t>(k)]).z();
       if (zk < lowest_z) {
         lowest_z = zk;
-        lowest = static_cast<int>(k);
+        lowest = k;
       }
     }
     return lowest;

@@ -10,6 +10,13 @@
 // hundreds); the search halves only intervals the bound cannot clear, so it cannot step over a touch, nor
 // over a vertex that dips below its level and back between two instants it looked at.
 //
+// The bound's test looks only at the vertices that can reach the wall within the step (issue 49: a cost per
+// step independent of the hull's size): with every level ≤ 0, a vertex higher at tl than
+// reach = 2·((|v_z| + |ω|·R)·h + ½·A·h²) (R the hull's radius, h the step) cannot come down to its level
+// before tr, and the bound's own test clears it (its time to reach the level from tl alone exceeds h); the
+// factor 2 keeps that so through round-off. Those vertices are found by a walk of the hull's edge graph from
+// the lowest (wall/near_wall.hpp), in index order: the candidates are the ones a scan gives.
+//
 // The paper's phase (contact_adaptive_step.cpp) turns about a fixed support instead: its candidates come from
 // an energy bound on the angle a step can sweep, and its events (entering and leaving the ε band as well as
 // the wall) from the same locate() on the same evenly spaced samples (sample_times below).
@@ -24,6 +31,7 @@
 #include <vector>
 
 #include "../tolerances.hpp"
+#include "../wall/near_wall.hpp"
 #include "events.hpp"
 #include "repose/geometry/types.hpp"
 
@@ -62,10 +70,11 @@ class WallCrossing {
   /// The lower end of a bracket `resolution` wide in which a vertex of `vertices` (body frame, from the
   /// centre of mass) first goes below its level `level(k)` (0: the wall; −∞ leaves the vertex out) in (a, b],
   /// so nothing is below its level at the time returned; +∞ if none does. `frame_at(t)` is the body's
-  /// WallFrame at any t in [a, b], `accel` the bound A on every vertex's |z''| over [a, b].
+  /// WallFrame at any t in [a, b], `accel` the bound A on every vertex's |z''| over [a, b]. `vertices` are
+  /// the hull's, whose edge graph `near` walks and whose radius is `radius`; every level is ≤ 0.
   template <class FrameAt, class Level>
-  double first_crossing(double a, double b, const std::vector<Vec3>& vertices, double accel,
-                        double resolution, FrameAt&& frame_at, Level&& level) {
+  double first_crossing(double a, double b, const std::vector<Vec3>& vertices, NearWall& near, double radius,
+                        double accel, double resolution, FrameAt&& frame_at, Level&& level) {
     // A vertex's height above its level and vertical speed.
     const auto vertex = [&](const WallFrame& f, std::size_t k) {
       const Vec3 r = f.q * vertices[k];
@@ -76,7 +85,11 @@ class WallCrossing {
     candidates_.clear();
     {
       const WallFrame fa = frame_at(a), fb = frame_at(b);
-      for (std::size_t k = 0; k < vertices.size(); ++k) {
+      const double h = b - a;
+      const double reach = 2 * ((std::abs(fa.speed) + fa.omega.norm() * radius) * h + 0.5 * accel * h * h);
+      const auto& near_wall = near.vertices_below(fa.q, fa.height, reach, 0.0, [](int) { return true; });
+      for (int vertex_index : near_wall) {
+        const auto k = static_cast<std::size_t>(vertex_index);
         if (level(k) == -INFINITY) continue;
         const auto [za, va] = vertex(fa, k);
         const auto [zb, vb] = vertex(fb, k);

@@ -29,8 +29,8 @@ double Flight::locate_touch(double a, double b) {
     const auto [height, speed] = centre_at(s);
     return WallFrame{st.q, st.omega, height, speed};
   };
-  return wall_.first_crossing(a, b, verts, accel, (b - a) * kEventResolution, frame_at,
-                              [](std::size_t) { return 0.0; });
+  return wall_.first_crossing(a, b, verts, run_.near_wall, run_.hull_radius, accel,
+                              (b - a) * kEventResolution, frame_at, [](std::size_t) { return 0.0; });
 }
 
 }  // namespace repose::sim

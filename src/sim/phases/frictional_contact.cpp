@@ -38,12 +38,21 @@ double FrictionalContact::kinetic_energy() const {
 
 bool FrictionalContact::stalled() const { return stalls_ >= tol::kStalls; }
 
+// The hull vertices within the band (by walks: wall/near_wall.hpp), in index order.
+const std::vector<int>& FrictionalContact::within_band() const {
+  const Run& run = run_;
+  const auto& verts = run.particle.hull.vertices;
+  return run.near_wall.vertices_below(run.q, run.com.z(), run.tol.frictional_band, run.tol.event, [&](int k) {
+    return !(run.com.z() + (run.q * verts[static_cast<std::size_t>(k)]).z() > run.tol.frictional_band);
+  });
+}
+
 std::pair<int, int> FrictionalContact::points_before_start() const {
   const Run& run = run_;
+  const auto& verts = run.particle.hull.vertices;
   int on = 0, slipping = 0;
-  for (const Vec3& v : run.particle.hull.vertices) {
-    const Vec3 arm = run.q * v;
-    if (run.com.z() + arm.z() > run.tol.frictional_band) continue;
+  for (int k : within_band()) {
+    const Vec3 arm = run.q * verts[static_cast<std::size_t>(k)];
     ++on;
     slipping += (point_velocity(velocity_, omega_, arm)).head<2>().norm() > run.tol.slip_speed;
   }
@@ -111,22 +120,20 @@ void FrictionalContact::classify() {
   active_.clear();
   conditions_.clear();
   leaving_slowly_.clear();
-  for (std::size_t k = 0; k < verts.size(); ++k) {
-    const Vec3 arm = run.q * verts[k];
+  for (int k : within_band()) {
+    const Vec3 arm = run.q * verts[static_cast<std::size_t>(k)];
     const double z = run.com.z() + arm.z();
-    if (z > run.tol.frictional_band) continue;
     const Vec3 u = point_velocity(velocity_, omega_, arm);
     if (u.z() > run.tol.speed) {  // leaving: it lifts (a slow one comes back as a Zeno capture)
-      if (u.z() <= run.tol.separation_speed) leaving_slowly_.push_back(static_cast<int>(k));
+      if (u.z() <= run.tol.separation_speed) leaving_slowly_.push_back(k);
       continue;
     }
     // Approaching, not yet at the wall: it strikes where it reaches it (an event), not early in the band.
     if (u.z() < -run.tol.speed && z > tol::kPierceFloor * run.tol.event) continue;
-    active_.push_back(static_cast<int>(k));
+    active_.push_back(k);
     PointCondition c;
     const Vec2 slip = u.head<2>();
-    const bool slid = std::find(sliding_before_.begin(), sliding_before_.end(), static_cast<int>(k)) !=
-                      sliding_before_.end();
+    const bool slid = std::find(sliding_before_.begin(), sliding_before_.end(), k) != sliding_before_.end();
     if (slip.norm() > (slid ? tol::kSlipHysteresis : 1.0) * run.tol.slip_speed) {
       c.rule = PointRule::sliding;
       c.direction = slip.normalized();
@@ -143,8 +150,8 @@ std::optional<FrictionalContact::End> FrictionalContact::begin_segment() {
   // a lowest point that drifted up within the band while not leaving is set back on the wall.
   double lowest = INFINITY;
   Vec3 lowest_arm = Vec3::Zero();
-  for (const Vec3& v : verts) {
-    const Vec3 arm = run.q * v;
+  for (int k : run.near_wall.near_lowest(run.q, run.tol.event)) {
+    const Vec3 arm = run.q * verts[static_cast<std::size_t>(k)];
     if (run.com.z() + arm.z() < lowest) {
       lowest = run.com.z() + arm.z();
       lowest_arm = arm;
@@ -214,10 +221,8 @@ std::optional<FrictionalContact::End> FrictionalContact::begin_segment() {
       !frictionless && std::any_of(conditions_.begin(), conditions_.end(),
                                    [](const PointCondition& c) { return c.rule == PointRule::sliding; });
   if (!slides && kinetic_energy() - translation <= run.tol.rest_energy) {
-    std::vector<int> band;  // every point within the band, leaving or not: the body cannot leave it
-    for (std::size_t k = 0; k < verts.size(); ++k)
-      if (run.com.z() + (run.q * verts[k]).z() <= run.tol.frictional_band)
-        band.push_back(static_cast<int>(k));
+    // Every point within the band, leaving or not: the body cannot leave it.
+    const std::vector<int> band = within_band();
     const ContactForces still = forces_at({run.com, Vec3::Zero(), run.q, Vec3::Zero()}, band,
                                           std::vector<PointCondition>(band.size()));
     if (still.acceleration.norm() <= run.tol.still_acceleration &&

@@ -89,6 +89,7 @@ class FrictionalContact {
   // the wall).
   Eigen::VectorXd stopping_impulses(const std::vector<Vec3>& arms, bool along) const;
   Eigen::VectorXd stopping_impulses_pushing(const std::vector<Vec3>& arms) const;
+  const std::vector<int>& within_band() const;
   BodyRates rates(const BodyState& s) const;
   void count_fallbacks(const ContactForces& f) const;
   ContactForces forces_at(const BodyState& s) const;  // at the segment's points, by their rules

@@ -27,7 +27,8 @@ double FrictionalContact::locate_event(double a, double b) {
   // the step without end), or one in the set sinking below it by more than the drift allows (a
   // configuration turned inconsistent within the step: Painlevé's, resolved at the event) or lifting out of
   // the band (rule_ends).
-  on_wall_.assign(verts.size(), 0);
+  // (Marks of the set's points, cleared after the search: no pass over the hull.)
+  if (on_wall_.size() != verts.size()) on_wall_.assign(verts.size(), 0);
   for (int k : active_) on_wall_[static_cast<std::size_t>(k)] = 1;
   const double sinking = -tol::kPierceFloor * run.tol.event;
   // A point's rule ending: a sliding point's slip stopping, or turning against its direction at the segment's
@@ -83,8 +84,10 @@ double FrictionalContact::locate_event(double a, double b) {
     const BodyState s = integrator_.state_at(t);
     return WallFrame{s.q, s.omega, s.com.z(), s.velocity.z()};
   };
-  const double touch = wall_.first_crossing(a, b, verts, accel, (b - a) * kEventResolution, frame_at,
-                                            [&](std::size_t k) { return on_wall_[k] ? -INFINITY : 0.0; });
+  const double touch =
+      wall_.first_crossing(a, b, verts, run.near_wall, run.hull_radius, accel, (b - a) * kEventResolution,
+                           frame_at, [&](std::size_t k) { return on_wall_[k] ? -INFINITY : 0.0; });
+  for (int k : active_) on_wall_[static_cast<std::size_t>(k)] = 0;
   // A rule's end before the touch: bisected in the first sample interval at whose end it holds.
   double when = touch;
   for (int i = 1; i <= tol::kEventSamples && times[i - 1] < touch; ++i) {

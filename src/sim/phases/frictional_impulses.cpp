@@ -38,9 +38,12 @@ bool FrictionalContact::resolve_impacts() {
   // traded ever smaller impacts without end (a rod's ends, each rebound driving the other in).
   const Mat3 R = run.q.toRotationMatrix();
   const Vec3 up = R.row(2).transpose();  // a vertex's height needs only this row
-  for (const Vec3& v : run.particle.hull.vertices) {
-    if (run.com.z() + up.dot(v) > tol::kPierceFloor * run.tol.event) continue;
-    const Vec3 arm = R * v;
+  const auto& verts = run.particle.hull.vertices;
+  const double touching = tol::kPierceFloor * run.tol.event;
+  for (int k : run.near_wall.vertices_below(run.q, run.com.z(), touching, run.tol.event, [&](int k) {
+         return !(run.com.z() + up.dot(verts[static_cast<std::size_t>(k)]) > touching);
+       })) {
+    const Vec3 arm = R * verts[static_cast<std::size_t>(k)];
     if (point_velocity(velocity_, omega_, arm).z() > run.tol.speed) arms.push_back(arm);
   }
   const double elastic = std::max(run.tol.separation_speed, run.params.restitution_threshold);

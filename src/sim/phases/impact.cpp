@@ -13,11 +13,13 @@ namespace repose::sim {
 Impact::Impact(Run& run) : run_(run), law_{run.params.restitution, run.params.friction} {}
 
 Impact::Outcome Impact::resolve(const Motion& motion) {
+  const Run& run = run_;
+  const auto& verts = run.particle.hull.vertices;
+  const auto height = [&](int k) { return run.com.z() + (run.q * verts[static_cast<std::size_t>(k)]).z(); };
   std::vector<Vec3> arms;
-  for (const Vec3& v : run_.particle.hull.vertices) {
-    const Vec3 arm = run_.q * v;
-    if (run_.com.z() + arm.z() <= run_.tol.touch) arms.push_back(arm);
-  }
+  for (int k : run.near_wall.vertices_below(run.q, run.com.z(), run.tol.touch, run.tol.event,
+                                            [&](int k) { return height(k) <= run.tol.touch; }))
+    arms.push_back(run.q * verts[static_cast<std::size_t>(k)]);
   return resolve(motion, arms, law_);
 }
 
