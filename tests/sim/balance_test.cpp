@@ -68,5 +68,30 @@ TEST(Balance, FaceOfZeroMarginIsTippedOffOverTheEdgeUnderTheCentreOfMass) {
   EXPECT_LT(r.steps, 1000);
 }
 
+// The same tip at the prism's four quarter turns about the vertical (the rule's choice of the edge under the
+// centre of mass must not depend on where the face lies on the wall: edge A is 1 from the pivot B at the
+// origin, edge B 0), and the motion after it planar by the prism's mirror symmetry in its depth: it turns
+// about its edge B alone, ω parallel to it at every sample (1e-9 relative: round-off of the rotation; a point
+// support at the pivot corner would turn it about that corner too). It rests on BC with the centre of mass
+// d·sin(π/4) from the edge's line, which passes through the origin.
+TEST(Balance, ZeroMarginTipIsTheSameAtEveryQuarterTurnAndTurnsAboutTheEdgeAlone) {
+  const Particle prism = test_shapes::zero_margin_prism();
+  for (int quarter = 0; quarter < 4; ++quarter) {
+    const Quat q(Eigen::AngleAxisd(quarter * 3.141592653589793 / 2, Vec3::UnitZ()));
+    const Vec3 edge = q * Vec3::UnitY();
+    double worst = 0;
+    const SettleResult r = settle(prism, SettleParams{}, q, [&](const Sample& s) {
+      worst = std::max(worst, s.omega.cross(edge).norm() / std::max(s.omega.norm(), 1e-300));
+    });
+    ASSERT_EQ(r.status, Status::rest) << "quarter turn " << quarter;
+    EXPECT_TRUE(r.down_normal_body.isApprox(Vec3(1, 0, -1).normalized(), 1e-9)) << "quarter turn " << quarter;
+    const Vec3 across = edge.cross(Vec3::UnitZ());  // horizontal, normal to the edge
+    EXPECT_NEAR(std::abs(r.com.dot(across)), std::sin(3.141592653589793 / 4) / 3, 1e-9 * prism.length)
+        << "quarter turn " << quarter;
+    EXPECT_LT(worst, 1e-9) << "quarter turn " << quarter;
+    EXPECT_LT(r.steps, 1000) << "quarter turn " << quarter;
+  }
+}
+
 }  // namespace
 }  // namespace repose
