@@ -23,6 +23,11 @@
 // 1.2e-8·m·g·L, residual ≤ 9.98e-7·m·g·L; 6 stalled (all μ > 1.68, each after 8–10 bounded rounds: a hold /
 // impact without collision / impact cycle, the next cause to remove), 145 timed out (every one μ = 0),
 // 61 bounded rounds, 487 pyramid, 24 unsolved, 80 unresolved; captures 825,902 Zeno, 3,070 Painlevé.
+// Session 56, with Painlevé's jam leaving a pulled point free (the cause of that cycle): 2,000 tosses, every
+// property holds, bounded rounds 0 (1), the rest unchanged; tosses 10,000–19,999 (REPOSE_FRICTION_FIRST=10000
+// REPOSE_FRICTION_TOSSES=10000, 65 min under load): every property holds, largest rise 6.5e-9·m·g·L,
+// residual ≤ 8.9e-7·m·g·L; stalled 0 (6 on 0905eab, all in this half), bounded rounds 1 (58; toss 13154,
+// μ = 1.98), timed out 53 (53, every one μ = 0), pyramid 320 (320), unsolved 3 (3), unresolved 40 (40).
 #include <gtest/gtest.h>
 
 #include <cmath>
