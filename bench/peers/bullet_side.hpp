@@ -40,7 +40,11 @@ struct BulletOptions {
   double step = 1e-3;  // Bullet's fixed step (s): --bullet-step, or chosen per shape (bullet_steps.hpp)
   bool sleep = true;   // Bullet's deactivation (default on); --bullet-no-sleep turns it off
   double damping = 0;  // repose's damping coefficient C to mirror as Bullet angular damping (0: none)
-  TossOptions toss;    // restitution and friction of the body (the ground's 1 and 1), with --toss
+  // Bullet's length unit, in its units per metre (--bullet-units): 1, metres; 100, centimetres, the unit a
+  // Bullet user picks for bodies of a centimetre, so that the body is about one unit and Bullet's default
+  // margin (0.04 units), sleeping thresholds and restitution threshold fit it. Masses stay in kg, times in s.
+  double units = 1;
+  TossOptions toss;  // restitution and friction of the body (the ground's 1 and 1), with --toss
 };
 
 // Bullet's side: one world per shape; each drop removes the body, resets it and adds it again.
@@ -50,7 +54,8 @@ class BulletSide {
       : dispatcher_(&config_),
         world_(&dispatcher_, &broadphase_, &solver_, &config_),
         ground_shape_({0, 0, 1}, 0) {
-    world_.setGravity({0, 0, -kGravity});
+    units_ = options.units;
+    world_.setGravity({0, 0, -kGravity * units_});
     ground_ =
         std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0, nullptr, &ground_shape_));
     world_.addRigidBody(ground_.get());
@@ -58,12 +63,12 @@ class BulletSide {
     // diagonal), i.e. repose's body frame rotated by the principal axes A: x_bullet = Aᵀ x_body.
     axes_ = particle.mass.principal_axes;
     for (const Vec3& v : particle.hull.vertices) {
-      const Vec3 p = axes_.transpose() * v;
+      const Vec3 p = units_ * (axes_.transpose() * v);
       vertices_.push_back(p);
       hull_.addPoint({p.x(), p.y(), p.z()}, false);
     }
     hull_.recalcLocalAabb();
-    const Vec3 moments = particle.mass.principal_moments;
+    const Vec3 moments = units_ * units_ * particle.mass.principal_moments;
     btRigidBody::btRigidBodyConstructionInfo info(particle.mass.mass, nullptr, &hull_,
                                                   {moments.x(), moments.y(), moments.z()});
     body_ = std::make_unique<btRigidBody>(info);
@@ -94,9 +99,12 @@ class BulletSide {
     Vec3 down_body;                // final direction at the wall, repose's body frame
   };
 
-  // Drop from rest on the wall, or tossed (`toss`, world frame) with the lowest point `height` above it.
+  // Drop from rest on the wall, or tossed (`toss`, world frame) with the lowest point `height` above it; the
+  // arguments and the Drop in metres, whatever Bullet's units.
   Drop drop(const Quat& q, double length, const repose::Toss& toss = {}, double height = 0) {
     Drop out;
+    length *= units_;
+    height *= units_;
     const auto t0 = Clock::now();
     // Orientation of Bullet's (principal) frame: world = R_q·x_body = R_q·A·x_bullet.
     const repose::Mat3 r = q.toRotationMatrix() * axes_;
@@ -105,7 +113,8 @@ class BulletSide {
     double lowest = INFINITY;
     for (const Vec3& p : vertices_) lowest = std::min(lowest, r.row(2).dot(p));
     const btTransform start(basis, {0, 0, height + margin() - lowest});
-    const btVector3 v(toss.velocity.x(), toss.velocity.y(), toss.velocity.z());
+    const Vec3 velocity = units_ * toss.velocity;
+    const btVector3 v(velocity.x(), velocity.y(), velocity.z());
     const btVector3 w(toss.spin.x(), toss.spin.y(), toss.spin.z());
     world_.removeRigidBody(body_.get());
     body_->setWorldTransform(start);
@@ -120,8 +129,8 @@ class BulletSide {
     world_.addRigidBody(body_.get());
     Clock::duration timed = Clock::now() - t0;
 
-    const double v_tol = kRestFraction * std::sqrt(kGravity * length);
-    const double w_tol = kRestFraction * std::sqrt(kGravity / length);
+    const double v_tol = kRestFraction * std::sqrt(kGravity * units_ * length);
+    const double w_tol = kRestFraction * std::sqrt(kGravity * units_ / length);
     std::vector<double> speed(window_), spin(window_);  // ring buffers of the last 0.1 s
     const long max_steps = std::lround(kMaxTime / dt_);
     long step = 0;
@@ -158,6 +167,7 @@ class BulletSide {
         break;
       }
     }
+    out.max_depth /= units_;
     out.time = static_cast<double>(step) * dt_;
     out.seconds = std::chrono::duration<double>(timed).count();
     const btMatrix3x3& b = body_->getWorldTransform().getBasis();
@@ -177,7 +187,8 @@ class BulletSide {
   btConvexHullShape hull_;
   std::unique_ptr<btRigidBody> body_;
   repose::Mat3 axes_;
-  std::vector<Vec3> vertices_;
+  std::vector<Vec3> vertices_;  // Bullet's units
+  double units_ = 1;            // Bullet's length units per metre
   bool sleep_ = true;
   double dt_ = 1e-3;   // the fixed step (s)
   long window_ = 100;  // the rest window in steps

@@ -29,9 +29,16 @@
 // docs/experiments.md). repose: restitution E and friction μ (its frictional contact phase after the
 // landing). Bullet: the body's restitution E and friction μ, the ground's 1 and 1 (Bullet multiplies the two
 // bodies' coefficients); Bullet's restitution is Newton's, equal to Stronge's E in a frictionless central
-// impact. Bullet's impacts slower than its restitution velocity threshold (btContactSolverInfo, 0.2 m/s) are
-// plastic; --match-threshold gives repose the same cut-off (SettleParams::restitution_threshold), which ends
-// the long cascade of small rebounds that E near 1 otherwise makes in repose.
+// impact. Bullet's impacts slower than its restitution velocity threshold (btContactSolverInfo, 0.2 of its
+// units a second) are plastic; --match-threshold gives repose the same cut-off
+// (SettleParams::restitution_threshold), which ends the long cascade of small rebounds that E near 1
+// otherwise makes in repose.
+//
+// Bullet's units (--bullet-units, issue 49): metres, or centimetres, the unit a Bullet user picks for bodies
+// of a centimetre (the body about one unit, so that Bullet's default margin, sleeping and restitution
+// thresholds, all in its units, fit it); by default centimetres when the shapes are scaled below 0.1 m, the
+// bottom of the range Bullet is tuned for in metres. Lengths, speeds and gravity are converted, masses stay
+// in kg and times in s; what is reported is in metres.
 //
 // One thread for everything. Time per settle is steady_clock time over the N drops; for Bullet only the
 // drop's reset, its steps and the rest test are timed, not the penetration measurement (a scan of every hull
@@ -43,7 +50,8 @@
 // Run:  build/release/bench/peers/repose_peer_bullet [--drops N] [--seed S] [--only NAME[,NAME...]]
 //                                                    [--full-settle] [--toss E,MU [--match-threshold]]
 //                                                    [--length L|natural] [--bullet-step S] [--meshes FILE]
-//                                                    [--bullet-no-sleep] [--bullet-damping]
+//                                                    [--bullet-units m|cm|auto] [--bullet-no-sleep]
+//                                                    [--bullet-damping]
 //                                                    [--export FILE] [--trace] [--no-histograms]
 //                                                    (--help: what they do)
 // Figures and discussion: docs/performance.md ("Against Bullet").
@@ -229,7 +237,7 @@ int usage(const char* argv0, bool help = false) {
       help ? stdout : stderr,
       "usage: %s [--drops N] [--seed S] [--only NAME[,NAME...]] [--full-settle] [--toss E,MU]\n"
       "          [--match-threshold] [--length L|natural] [--bullet-step S] [--bullet-no-sleep]\n"
-      "          [--bullet-damping] [--export FILE] [--trace] [--no-histograms]\n"
+      "          [--bullet-units m|cm|auto] [--bullet-damping] [--export FILE] [--trace] [--no-histograms]\n"
       "  --drops N      drops per shape (default: per shape, a run of a few minutes)\n"
       "  --seed S       drop i starts at repose::drop_orientation(S, i) (default 1)\n"
       "  --only NAMES   comma-separated row names (cube, box123, tetrahedron, cylinder64, ellipsoid2000,\n"
@@ -238,13 +246,17 @@ int usage(const char* argv0, bool help = false) {
       "  --toss E,MU    toss every drop from 4 L up (random speeds, docs/experiments.md's toss) with\n"
       "                 restitution E and friction MU (inf: no slip) in both engines\n"
       "  --match-threshold  with --toss: repose's impacts below Bullet's restitution velocity threshold\n"
-      "                 (0.2 m/s) plastic too, as Bullet's are (default: repose's E at every speed)\n"
+      "                 (0.2 of its units a second) plastic too, as Bullet's are (default: repose's E at "
+      "every speed)\n"
       "  --meshes FILE  also a row for each mesh FILE lists, one per line: NAME PATH [--repair] [--convex]\n"
       "                 (PATH relative to FILE; scripts/fetch-meshes.sh writes such a list)\n"
       "  --length L     scale every shape to a characteristic length (volume-equivalent diameter) of L m\n"
       "                 (default 0.5: the middle of Bullet's 0.1-1 m range); natural: the shapes' own sizes\n"
       "  --bullet-step S  Bullet's fixed step in seconds (default: per shape, the largest of 1/60, 1/120,\n"
       "                 1/240, 1/480 and 1/1000 s whose rest poses agree with 1/1000 s's; all are run)\n"
+      "  --bullet-units U   Bullet's length unit: m, cm, or auto (default: cm for shapes scaled below 0.1 "
+      "m,\n"
+      "                 else m; Bullet's margin and thresholds are in its units)\n"
       "  --bullet-no-sleep  switch off Bullet's deactivation (default: on, Bullet's default)\n"
       "  --bullet-damping   give Bullet angular damping at repose's rate C/I (default: none, Bullet's "
       "default)\n"
@@ -265,6 +277,8 @@ int main(int argc, char** argv) {
   BulletOptions bullet_options;
   std::string only, mesh_list, export_file;
   double length = 0.5;  // m; 0: the shapes' own sizes
+  std::string bullet_units = "auto";
+  bool match_threshold = false;
   std::vector<double> steps = kCandidateSteps;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -292,7 +306,10 @@ int main(int argc, char** argv) {
           !(bullet_options.toss.friction >= 0))
         return usage(argv[0]);
     } else if (a == "--match-threshold") {
-      bullet_options.toss.threshold = btContactSolverInfo().m_restitutionVelocityThreshold;
+      match_threshold = true;
+    } else if (a == "--bullet-units") {
+      bullet_units = value();
+      if (bullet_units != "m" && bullet_units != "cm" && bullet_units != "auto") return usage(argv[0]);
     } else if (a == "--meshes") {
       mesh_list = value();
     } else if (a == "--length") {
@@ -318,6 +335,12 @@ int main(int argc, char** argv) {
       return usage(argv[0], a == "--help" || a == "-h");
     }
   }
+  bullet_options.units =
+      bullet_units == "cm" || (bullet_units == "auto" && length > 0 && length < 0.1) ? 100.0 : 1.0;
+  // Bullet's restitution velocity threshold is in its units: in m/s for repose.
+  if (match_threshold)
+    bullet_options.toss.threshold =
+        btContactSolverInfo().m_restitutionVelocityThreshold / bullet_options.units;
   if (!export_file.empty() && bullet_options.toss.active) {
     std::fprintf(stderr, "error: --export writes drops from rest; it does not take --toss\n");
     return 2;
@@ -333,9 +356,10 @@ int main(int argc, char** argv) {
   std::string steps_label;
   for (double step : steps) steps_label += (steps_label.empty() ? "" : ", ") + step_label(step);
   std::printf(
-      "Bullet %d, btScalar %s precision, fixed step %s%s, margin default, deactivation %s, angular damping "
-      "%s; repose %s, seed %llu; shapes at L = %s%s\n\n",
-      btGetVersion(), sizeof(btScalar) == 8 ? "double" : "single", steps.size() > 1 ? "chosen from " : "",
+      "Bullet %d, btScalar %s precision, in %s, fixed step %s%s, margin default, deactivation %s, angular "
+      "damping %s; repose %s, seed %llu; shapes at L = %s%s\n\n",
+      btGetVersion(), sizeof(btScalar) == 8 ? "double" : "single",
+      bullet_options.units == 100 ? "centimetres" : "metres", steps.size() > 1 ? "chosen from " : "",
       steps_label.c_str(), bullet_options.sleep ? "on" : "off",
       bullet_options.damping > 0 ? "repose's rate" : "none",
       full_settle ? "--full-settle" : "poses defaults (decide early)", static_cast<unsigned long long>(seed),
