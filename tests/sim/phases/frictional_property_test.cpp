@@ -27,7 +27,11 @@
 // property holds, bounded rounds 0 (1), the rest unchanged; tosses 10,000–19,999 (REPOSE_FRICTION_FIRST=10000
 // REPOSE_FRICTION_TOSSES=10000, 65 min under load): every property holds, largest rise 6.5e-9·m·g·L,
 // residual ≤ 8.9e-7·m·g·L; stalled 0 (6 on 0905eab, all in this half), bounded rounds 1 (58; toss 13154,
-// μ = 1.98), timed out 53 (53, every one μ = 0), pyramid 320 (320), unsolved 3 (3), unresolved 40 (40).
+// μ = 1.98), timed out 53 (53, every one μ = 0), pyramid 320 (320), unsolved 3 (3), unresolved 40 (40);
+// tosses 0–9,999 on 63e18a4 (19 min): every property holds, residual ≤ 9.98e-7·m·g·L (toss 2914, μ = 0);
+// stalled 0 (0), bounded rounds 0 (3), timed out 92 (92, every one μ = 0), pyramid 167 (167), unsolved 21
+// (21), unresolved 41 (40). All 20,000: stalled 0 (6), bounded rounds 1 (61), timed out 145 (145), pyramid
+// 487, unsolved 24, unresolved 81; captures 826,595 Zeno, 2,340 Painlevé.
 #include <gtest/gtest.h>
 
 #include <cmath>
