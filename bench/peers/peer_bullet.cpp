@@ -207,6 +207,7 @@ Row run_shape(const Shape& shape, std::uint64_t drops, std::uint64_t seed, bool 
     const auto t_drop = trace ? Clock::now() : t0;
     const repose::DropOutcome outcome = repose::simulate_drop(particle, rs.landscape, catalog, rs.options, i);
     repose_pose[i] = outcome.pose;
+    row.repose_steps += static_cast<std::uint64_t>(outcome.steps);
     if (trace)
       std::fprintf(stderr, "  drop %llu: repose pose %d (%.3g ms, %ld steps)\n",
                    static_cast<unsigned long long>(i), outcome.pose,

@@ -31,6 +31,7 @@ struct Row {
   double length = 0;
   std::uint64_t drops = 0;
   double repose_seconds = 0, repose_setup_seconds = 0;
+  std::uint64_t repose_steps = 0;  // the engine's steps over all drops (outcome.steps)
   std::uint64_t repose_no_rest = 0;
   std::vector<std::uint64_t> repose_hist;
   std::vector<Vec3> pose_normals;
@@ -111,12 +112,13 @@ void print_steps(const std::vector<Row>& rows) {
 
 void print_table(const std::vector<Row>& rows) {
   std::printf(
-      "| shape | hull vertices | L (m) | drops | repose ms/settle | repose set-up ms | Bullet step | Bullet "
-      "ms/settle | Bullet / repose | Bullet / repose, 1,000 drops with set-up | Bullet / repose at 1 ms | "
-      "Bullet simulated s/settle | Bullet max depth of a hull vertex (L) | same pose | Bullet no rest / off "
-      "a "
-      "stable face |\n");
-  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+      "| shape | hull vertices | L (m) | drops | repose ms/settle | repose steps/settle | repose µs/step | "
+      "repose set-up ms | Bullet step | Bullet ms/settle | Bullet steps/settle | Bullet µs/step | Bullet / "
+      "repose | Bullet / repose, 1,000 drops with set-up | Bullet / repose at 1 ms | Bullet simulated "
+      "s/settle | Bullet max depth of a hull vertex (L) | same pose | Bullet no rest / off a stable face "
+      "|\n");
+  std::printf(
+      "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const Row& r : rows) {
     const double n = static_cast<double>(r.drops);
     const BulletRun& b = r.best();
@@ -129,14 +131,18 @@ void print_table(const std::vector<Row>& rows) {
         std::snprintf(ratio, sizeof ratio, "%.2f", run.seconds / n / rep);
         at_1ms = ratio;
       }
+    // Steps: repose's engine steps (events and integrator steps alike); Bullet's fixed steps, its simulated
+    // time over its step.
+    const double repose_steps = static_cast<double>(r.repose_steps) / n, bullet_steps = b.mean_time / b.step;
     std::printf(
-        "| %s | %d | %.3f | %llu | %.3f | %.1f | %s | %.3f | %.2f | %.2f | %s | %.2f | %.1e | %.0f %% | %llu "
-        "/ "
-        "%llu |\n",
+        "| %s | %d | %.3f | %llu | %.3f | %.1f | %.2f | %.1f | %s | %.3f | %.1f | %.2f | %.2f | %.2f | %s | "
+        "%.2f | %.1e | %.0f %% | %llu / %llu |\n",
         r.name.c_str(), r.hull_vertices, r.length, static_cast<unsigned long long>(r.drops), 1e3 * rep,
-        1e3 * r.repose_setup_seconds, step_label(b.step).c_str(), 1e3 * bul, bul / rep, whole, at_1ms.c_str(),
-        b.mean_time, std::max(0.0, b.depth) / r.length, 100.0 * static_cast<double>(b.agree) / n,
-        static_cast<unsigned long long>(b.no_rest), static_cast<unsigned long long>(b.off_face));
+        repose_steps, 1e6 * rep / std::max(repose_steps, 1.0), 1e3 * r.repose_setup_seconds,
+        step_label(b.step).c_str(), 1e3 * bul, bullet_steps, 1e6 * bul / std::max(bullet_steps, 1.0),
+        bul / rep, whole, at_1ms.c_str(), b.mean_time, std::max(0.0, b.depth) / r.length,
+        100.0 * static_cast<double>(b.agree) / n, static_cast<unsigned long long>(b.no_rest),
+        static_cast<unsigned long long>(b.off_face));
   }
 }
 
