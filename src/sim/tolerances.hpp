@@ -138,6 +138,10 @@ inline constexpr int kEventSamples = 8;
 /// factor 2 (the 2,000-toss sweep: no vertex deeper than 1e-9·L, the same fallbacks as the 8 samples' Hermite
 /// dip test it replaced).
 inline constexpr double kAccelerationMargin = 2;
+/// The contact phase's event search in a bracket takes part only the vertices that can decide it, by the
+/// turn the energy bound allows there (rate_bound times the bracket) times this margin: the bound is on the
+/// true motion, and the dense output follows it to the integrator's tolerance.
+inline constexpr double kBracketTurnMargin = 2;
 /// The contact phase: decisions are also checked at every kDecisionStride-th event sample instant; a support
 /// chosen from several touching points is chosen again at once at most kRedecisions times.
 inline constexpr std::size_t kDecisionStride = 2;
@@ -147,6 +151,11 @@ inline constexpr std::size_t kFlightCachedSamples = 4;
 /// Contact's band of vertex ids is sorted through a bitset from this many ids on (below, a comparison sort is
 /// cheaper; above, a tenth of a 10,000-vertex grain's settle went to std::sort).
 inline constexpr std::size_t kBitsetSortFrom = 64;
+/// convex_hull_2d drops the points deeper than kHullInteriorDepth times its merging tolerance inside the
+/// quadrilateral of its extreme points before its sort, from kHullFilterFrom points on (fewer: the sort is
+/// cheaper than the pass). A point that deep is neither on the hull nor merged with a point on it.
+inline constexpr double kHullInteriorDepth = 64;
+inline constexpr std::size_t kHullFilterFrom = 32;
 
 // The impact laws (rigid_impact.cpp, multi_impact.cpp, impact.cpp).
 /// Several points on the wall may each need an impact (the first leaves another approaching): bounded.

@@ -136,8 +136,10 @@ class Contact {
     bool any = false, pierced = false, entered = false;
   };
   EventFlags paper_event_at(const Quat& qq) const;
-  EventFlags adaptive_event_at(const Quat& qq) const;
-  double event_margin(const Quat& qq) const;
+  struct StepVertices;
+  EventFlags adaptive_event_at(const Quat& qq, const StepVertices& v) const;
+  double event_margin(const Quat& qq, const StepVertices& v) const;
+  void select_bracket_vertices(const Quat& q_lo, double turn);
 
   // ---- the steppers: one is chosen from SettleParams::integrator when the phase is built (stepper_)
   // The paper's fixed step (Eqs 10-16): every event bracketed by halving; after a step every vertex's
@@ -249,7 +251,17 @@ class Contact {
   struct StepVertices {
     std::vector<Vec3> offset;
     std::vector<double> pierce, rise, enter;
-  } step_vertices_;
+    void clear() {
+      offset.clear();
+      pierce.clear();
+      rise.clear();
+      enter.clear();
+    }
+  };
+  StepVertices step_vertices_;
+  // Of those, the ones that can decide the search of an event's bracket (select_bracket_vertices).
+  StepVertices bracket_vertices_;
+  std::vector<double> margin_scratch_;  // select_bracket_vertices' lower bounds of the margins
   std::vector<std::uint64_t> id_bits_;  // of hull size in bits, all zero between uses (sort_vertex_ids)
   int lowest_vertex_ = 0;               // the lowest hull vertex at the last walk (its start)
 };

@@ -1,6 +1,8 @@
 #include "stability.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -30,7 +32,44 @@ double cross2(const Vec2& o, const Vec2& a, const Vec2& b) {
 }
 }  // namespace
 
-std::vector<Vec2> convex_hull_2d(std::vector<Vec2> pts, double tol) {
+namespace {
+// Akl and Toussaint's heuristic: the points deep inside the quadrilateral of the extreme points in x and y
+// (more than tol::kHullInteriorDepth·tol inside every edge) are neither on the hull nor within `tol` of a
+// point on it, so the monotone chain below gives the same hull without them. On a fine mesh's band (thousands
+// of points) it leaves the points near the boundary, and the sort is of those.
+void drop_deep_interior(std::vector<Vec2>& pts, double tol) {
+  if (pts.size() < tol::kHullFilterFrom) return;
+  std::array<Vec2, 4> corner{pts[0], pts[0], pts[0], pts[0]};  // leftmost, lowest, rightmost, highest
+  for (const Vec2& p : pts) {
+    if (p.x() < corner[0].x()) corner[0] = p;
+    if (p.y() < corner[1].y()) corner[1] = p;
+    if (p.x() > corner[2].x()) corner[2] = p;
+    if (p.y() > corner[3].y()) corner[3] = p;
+  }
+  const double depth = tol::kHullInteriorDepth * tol;
+  std::array<Vec2, 4> normal;  // inward unit normals of the edges corner[i] → corner[i + 1] (zero: none)
+  std::array<double, 4> offset{};
+  int edges = 0;
+  for (int i = 0; i < 4; ++i) {
+    const Vec2 e = corner[static_cast<std::size_t>((i + 1) % 4)] - corner[static_cast<std::size_t>(i)];
+    const double length = e.norm();
+    normal[static_cast<std::size_t>(i)] = length > 0 ? Vec2(-e.y() / length, e.x() / length) : Vec2::Zero();
+    offset[static_cast<std::size_t>(i)] =
+        normal[static_cast<std::size_t>(i)].dot(corner[static_cast<std::size_t>(i)]);
+    edges += length > 0;
+  }
+  if (edges < 3) return;
+  const auto deep = [&](const Vec2& p) {
+    for (std::size_t i = 0; i < 4; ++i)
+      if (normal[i] != Vec2::Zero() && !(normal[i].dot(p) - offset[i] > depth)) return false;
+    return true;
+  };
+  pts.erase(std::remove_if(pts.begin(), pts.end(), deep), pts.end());
+}
+
+// Andrew's monotone chain (convex_hull_2d).
+
+std::vector<Vec2> monotone_chain(std::vector<Vec2> pts, double tol) {
   std::sort(pts.begin(), pts.end(),
             [](const Vec2& a, const Vec2& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
   std::vector<Vec2> unique;
@@ -54,6 +93,17 @@ std::vector<Vec2> convex_hull_2d(std::vector<Vec2> pts, double tol) {
   if (hull.size() < 3) {  // all collinear: keep the two extreme points
     return {unique.front(), unique.back()};
   }
+  return hull;
+}
+}  // namespace
+
+std::vector<Vec2> convex_hull_2d(std::vector<Vec2> pts, double tol) {
+#ifndef NDEBUG
+  const std::vector<Vec2> all = pts;
+#endif
+  drop_deep_interior(pts, tol);
+  std::vector<Vec2> hull = monotone_chain(std::move(pts), tol);
+  assert(hull == monotone_chain(all, tol));  // the sanitizer build checks every filtered hull
   return hull;
 }
 
