@@ -156,11 +156,13 @@ void apply_reactions(const ContactProblem& p, const Vec3& lin, const Vec3& ang, 
   }
 }
 
-// One block Gauss–Seidel sweep over the points; the largest change of a point's value it made.
+// One block Gauss–Seidel sweep over the points; the largest change of a point's value it made. `at_start`:
+// scratch for the values at the sweep's start (a solve's sweeps share it).
 double sweep_once(const ContactProblem& p, const std::vector<Mat3>& diagonal,
-                  const std::vector<PointCondition>& conditions, ContactSolution& s, Counts& counts) {
+                  const std::vector<PointCondition>& conditions, ContactSolution& s, Counts& counts,
+                  std::vector<Vec3>& at_start) {
   const std::size_t n = p.arms.size();
-  std::vector<Vec3> at_start(n);
+  at_start.resize(n);
   for (std::size_t i = 0; i < n; ++i) at_start[i] = point_value(p, i, s.lin, s.ang);
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3 f = point_value(p, i, s.lin, s.ang) - diagonal[i] * s.reactions[i];
@@ -207,7 +209,8 @@ ContactSolution exact_from_pyramid(const ContactProblem& p, const std::vector<Ma
       s.reactions = *newton;
       apply_reactions(p, lin, ang, s);
       Counts counts;
-      const double change = sweep_once(p, diagonal, conditions, s, counts);
+      std::vector<Vec3> at_start;
+      const double change = sweep_once(p, diagonal, conditions, s, counts, at_start);
       if (change <= tol::kPolished * p.scale && counts.painleve == 0 && counts.unresolved == 0) return s;
     }
   }
@@ -237,9 +240,10 @@ ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const V
   }
   double previous_change = INFINITY;
   int next_polish = tol::kSweepsBeforeNewton;
+  std::vector<Vec3> at_start(n);
   for (int sweep = 0; sweep < tol::kContactSweeps; ++sweep) {
     Counts counts;
-    const double change = sweep_once(p, diagonal, conditions, s, counts);
+    const double change = sweep_once(p, diagonal, conditions, s, counts, at_start);
     double largest = 0, round_off = 0;
     for (std::size_t i = 0; i < n; ++i) {
       largest = std::max(largest, point_value(p, i, s.lin, s.ang).norm());
