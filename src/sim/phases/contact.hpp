@@ -250,9 +250,11 @@ class Contact {
   // per-vertex state: on fine hulls they are a third of a drop's time.
   struct StepVertices {
     std::vector<Vec3> offset;
+    std::vector<double> distance;  // |offset|
     std::vector<double> pierce, rise, enter;
     void clear() {
       offset.clear();
+      distance.clear();
       pierce.clear();
       rise.clear();
       enter.clear();

@@ -143,10 +143,12 @@ void Contact::begin_adaptive_step(AdaptiveStepper& step) {
   for (int k : event_candidates_) {
     const Vec3 d = run.particle.hull.vertices[static_cast<std::size_t>(k)] - support_.body;
     z_[k] = support_.world.z() + r3.dot(d);
-    const double reach = arc * d.norm() + run.tol.event;
+    const double distance = d.norm();
+    const double reach = arc * distance + run.tol.event;
     if (z_[k] - reach < event_level(k) || z_[k] + reach > rise_level(k)) {
       const auto kk = static_cast<std::size_t>(k);
       packed.offset.push_back(d);
+      packed.distance.push_back(distance);
       packed.pierce.push_back(pierce_level(kk));
       packed.rise.push_back(rise_level(kk));
       packed.enter.push_back(band_events() && !in_contact_[kk] ? run.tol.band : -INFINITY);
@@ -223,7 +225,7 @@ void Contact::select_bracket_vertices(const Quat& q_lo, double turn) {
     const double zk = base + r3.dot(v.offset[i]);
     double m = std::min(zk - v.pierce[i], v.rise[i] - zk);
     if (v.enter[i] > -INFINITY) m = std::min(m, zk - v.enter[i]);
-    const double reach = turn * v.offset[i].norm();
+    const double reach = turn * v.distance[i];
     margin_scratch_[i] = m - reach;
     bound = std::min(bound, m + reach);
   }
@@ -233,6 +235,7 @@ void Contact::select_bracket_vertices(const Quat& q_lo, double turn) {
   for (std::size_t i = 0; i < v.offset.size(); ++i) {
     if (!(margin_scratch_[i] <= keep)) continue;
     out.offset.push_back(v.offset[i]);
+    out.distance.push_back(v.distance[i]);
     out.pierce.push_back(v.pierce[i]);
     out.rise.push_back(v.rise[i]);
     out.enter.push_back(v.enter[i]);
