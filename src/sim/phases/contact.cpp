@@ -5,12 +5,10 @@
 
 namespace repose::sim {
 
-Contact::Contact(Run& run) : run_(run) {
+Contact::Contact(Run& run) : run_(run), walks_(run.particle.hull) {
   const std::size_t n = run.particle.hull.vertices.size();
   z_.resize(n);
   in_contact_.resize(n);
-  walk_visited_.resize(n);
-  id_bits_.resize((n + kWordBits - 1) / kWordBits);
   if (run.params.integrator == Integrator::adaptive)
     stepper_.emplace<AdaptiveStepper>(run.body, run.tol.length, run.params.tolerance, run.tol.dt);
 }

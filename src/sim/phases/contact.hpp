@@ -38,9 +38,6 @@
 
 namespace repose::sim {
 
-// The bits of a word of Contact's bitset sort (contact_walks.cpp).
-inline constexpr std::size_t kWordBits = std::numeric_limits<std::uint64_t>::digits;
-
 /// A pose about the current support: the orientation and the centre of mass it puts where.
 struct Pose {
   Quat q;
@@ -213,7 +210,6 @@ class Contact {
   // ---- vertex walks (contact_walks.cpp)
   void vertices_below(const Quat& qq, double level, std::vector<int>& out, bool sorted);
   void vertices_below_among(const Quat& qq, double level, std::span<const int> among, std::vector<int>& out);
-  void sort_vertex_ids(std::vector<int>& ids);
   bool band_matches_walk(double level, const std::vector<int>& picked);
   double lowest_height();
 
@@ -242,8 +238,6 @@ class Contact {
   std::vector<double> next_z_;
   std::vector<int> next_contact_, decision_contact_, decision_touching_, decision_set_;
   std::vector<std::pair<double, double>> margin_samples_;  // brief_stability_pass's margins by time
-  std::vector<char> walk_visited_;                         // of hull size, all zero between uses
-  std::vector<int> walk_out_;                              // a walk's vertices (scratch)
   // The step's reachable vertices packed for the event tests made at every instant of its event search: their
   // offsets from the support point (body frame) and their event levels, all fixed within the step (enter: the
   // band's level for a vertex that can enter it, else -inf). Contiguous, so the tests read no scattered
@@ -264,8 +258,7 @@ class Contact {
   // Of those, the ones that can decide the search of an event's bracket (select_bracket_vertices).
   StepVertices bracket_vertices_;
   std::vector<double> margin_scratch_;  // select_bracket_vertices' lower bounds of the margins
-  std::vector<std::uint64_t> id_bits_;  // of hull size in bits, all zero between uses (sort_vertex_ids)
-  int lowest_vertex_ = 0;               // the lowest hull vertex at the last walk (its start)
+  NearWall walks_;                      // the walks of the vertex sets near the wall (contact_walks.cpp)
 };
 
 }  // namespace repose::sim
