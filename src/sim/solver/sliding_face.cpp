@@ -17,8 +17,12 @@ namespace {
 // a starting slip's direction by tol::kDirectionRounds (tolerances.hpp).
 constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
 
+// The face's unknowns and system: at most 11, on the stack (a solve per evaluation of the rates).
+using FaceVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 11, 1>;
+using FaceMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 11, 11>;
+
 struct FaceSolution {
-  Eigen::VectorXd x;  // a (3), α (3), c (3), then the sticking point's tangential force (2)
+  FaceVector x;  // a (3), α (3), c (3), then the sticking point's tangential force (2)
   std::vector<double> normals;
   Vec3 acceleration(const Motion& m, const Vec3& r) const {
     return x.segment<3>(0) + Vec3(x.segment<3>(3)).cross(r) + m.omega.cross(m.omega.cross(r));
@@ -56,8 +60,8 @@ std::optional<FaceSolution> solve_face(const ContactBody& body, const Motion& mo
   const Eigen::Index size = sticks ? 11 : 9;
   const Vec3& w = motion.omega;
   const double m = body.mass;
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(size, size);
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(size);
+  FaceMatrix A = FaceMatrix::Zero(size, size);
+  FaceVector rhs = FaceVector::Zero(size);
   // m·a − Σ F_i = −m·g·ẑ and I·α − Σ r_i × F_i = −C·ω − ω × I·ω.
   A.block<3, 3>(0, 0) = m * Mat3::Identity();
   A.block<3, 3>(3, 3) = body.inertia;
@@ -87,7 +91,7 @@ std::optional<FaceSolution> solve_face(const ContactBody& body, const Motion& mo
     A(9, 0) = 1, A(9, 4) = r.z(), A(9, 5) = -r.y(), rhs(9) = -centripetal.x();
     A(10, 1) = 1, A(10, 5) = r.x(), A(10, 3) = -r.z(), rhs(10) = -centripetal.y();
   }
-  const Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
+  const Eigen::FullPivLU<FaceMatrix> lu(A);
   if (!lu.isInvertible()) return std::nullopt;
   FaceSolution s;
   s.x = lu.solve(rhs);
