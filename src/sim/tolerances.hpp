@@ -146,6 +146,9 @@ inline constexpr double kBracketTurnMargin = 2;
 /// chosen from several touching points is chosen again at once at most kRedecisions times.
 inline constexpr std::size_t kDecisionStride = 2;
 inline constexpr int kRedecisions = 2;
+/// The contact phase: band crossings that change no decision passed over in one call of its step at most
+/// (the engine's per-step checks then run, and the next call goes on).
+inline constexpr int kQuietCrossings = 1024;
 /// A spinning flight's touch search keeps this many samples of its candidates' heights.
 inline constexpr std::size_t kFlightCachedSamples = 4;
 /// Contact's band of vertex ids is sorted through a bitset from this many ids on (below, a comparison sort is

@@ -155,6 +155,13 @@ class Contact {
     // What ends the current step: the integrator's step, an event, or an event at which a point entered the
     // ε band (which lets the update choose a new support, contact_support.cpp).
     enum class End { step, event, band_entry } ends = End::step;
+    // The current step ends where a vertex crosses the ε band (entering or leaving it, no other event), and
+    // `before` holds the contact decisions in force up to there (quiet_crossing).
+    bool crossing = false;
+    Decision before;
+    // After a quiet crossing the next search reuses the step's candidates (a superset of those a walk from
+    // the crossing would find: the particle turns by less in the rest of the step than in all of it).
+    bool keep_candidates = false;
     double end = 0;           // the current step's first event, or its end
     double restart_step = 0;  // the first trial step of a restart (0: from rest, a short one)
     double min_moment = 1;    // the smallest moment of inertia about the current support (arc_bound)
@@ -189,6 +196,7 @@ class Contact {
   Outcome update(const Vec3& omega, const Vec3& com_velocity, bool heights_known = false,
                  BandSource band_source = BandSource::walk);
   void quiet_update();
+  bool quiet_crossing(AdaptiveStepper& step);
   void trace_update() const;
   double stability_margin(const std::vector<Vec3>& points, const Vec2& g) const;
   void note_penetration();
@@ -211,6 +219,7 @@ class Contact {
   void vertices_below(const Quat& qq, double level, std::vector<int>& out, bool sorted);
   void vertices_below_among(const Quat& qq, double level, std::span<const int> among, std::vector<int>& out);
   bool band_matches_walk(double level, const std::vector<int>& picked);
+  bool candidates_cover(const Quat& qq, double level);
   double lowest_height();
 
   Run& run_;

@@ -65,24 +65,29 @@ void Contact::adaptive_step(AdaptiveStepper& step) {
     step.min_moment = smallest_moment();
     step.next = Next::new_step;
   }
-  if (step.next != Next::inside) begin_adaptive_step(step);
-  const double end = std::min({step.end, run.tol.max_time, run.limit});
-  if (end < step.end) {  // stopped inside the step by advance_to() or the time limit
-    rot_ = step.integrator.state_at(end);
+  // A crossing of the ε band that changes no decision is no step (issue 49): the contact set changes and the
+  // search goes on in the same integrator step, up to kQuietCrossings in one call.
+  for (int crossings = 0;; ++crossings) {
+    if (step.next != Next::inside) begin_adaptive_step(step);
+    const double end = std::min({step.end, run.tol.max_time, run.limit});
+    if (end < step.end) {  // stopped inside the step by advance_to() or the time limit
+      rot_ = step.integrator.state_at(end);
+      run.q = rot_.q;
+      run.com = com_position(support_, run.q);
+      run.t = end;
+      return;
+    }
+    band_entered_ = step.ends == AdaptiveStepper::End::band_entry;
+    // After an event the rest of the integrator's step is still the motion, unless the update below changes
+    // the support (which restarts the integrator): the next step resumes there.
+    step.next = step.ends == AdaptiveStepper::End::step ? Next::new_step : Next::resume;
+    step.restart_step = step.integrator.proposed_step();
+    rot_ = step.integrator.state_at(step.end);
     run.q = rot_.q;
     run.com = com_position(support_, run.q);
-    run.t = end;
-    return;
+    run.t = step.end;
+    if (!step.crossing || crossings + 1 >= tol::kQuietCrossings || !quiet_crossing(step)) break;
   }
-  band_entered_ = step.ends == AdaptiveStepper::End::band_entry;
-  // After an event the rest of the integrator's step is still the motion, unless the update below changes
-  // the support (which restarts the integrator): the next step resumes there.
-  step.next = step.ends == AdaptiveStepper::End::step ? Next::new_step : Next::resume;
-  step.restart_step = step.integrator.proposed_step();
-  rot_ = step.integrator.state_at(step.end);
-  run.q = rot_.q;
-  run.com = com_position(support_, run.q);
-  run.t = step.end;
   ++run.steps;
   // The decisions found at this step's end hold at the next step's start if the update changes nothing they
   // depend on (the same contact and touching points, support and phase): then they are not recomputed.
@@ -136,7 +141,11 @@ void Contact::begin_adaptive_step(AdaptiveStepper& step) {
   // Candidates: the vertices within reach of an event level from where they start, by a walk; their start
   // heights (the baseline of the pierce test) are refreshed. Of those, the ones that can reach one of their
   // own event levels are checked; most steps keep none and look no further.
-  vertices_below(rot_.q, level + arc * reach_radius_ + run.tol.event, event_candidates_, false);
+  const double reach_level = level + arc * reach_radius_ + run.tol.event;
+  if (std::exchange(step.keep_candidates, false))
+    assert(candidates_cover(rot_.q, reach_level));
+  else
+    vertices_below(rot_.q, reach_level, event_candidates_, false);
   const Vec3 r3 = rot_.q.toRotationMatrix().row(2).transpose();
   StepVertices& packed = step_vertices_;
   packed.clear();
@@ -163,6 +172,7 @@ void Contact::begin_adaptive_step(AdaptiveStepper& step) {
       if ((at_first = adaptive_event_at(step.integrator.orientation_at(times[i]), packed)).any) first = i;
   step.end = t1;
   step.ends = first > 0 ? AdaptiveStepper::End::event : AdaptiveStepper::End::step;
+  step.crossing = false;
   if (first <= 0) {
     locate_decision_change(step, t0, t1, std::span(times).subspan(1, tol::kEventSamples - 1));
     return;
@@ -206,6 +216,7 @@ double Contact::locate_step_event(AdaptiveStepper& step, double lo, double hi, c
   const EventFlags flags =
       held_at == at.hi ? held : adaptive_event_at(step.integrator.orientation_at(at.hi), v);
   if (!flags.pierced && flags.entered && !finishing_) step.ends = AdaptiveStepper::End::band_entry;
+  step.crossing = !flags.pierced && band_events();
   step.end = flags.pierced ? at.lo : at.hi;
   return at.lo;
 }

@@ -108,6 +108,7 @@ bool Contact::contact_set_holds(double arc) const {
 void Contact::locate_decision_change(AdaptiveStepper& step, double t0, double t_end,
                                      std::span<const double> inner) {
   const Decision start = step.decision ? *step.decision : decision_at(rot_.q, true, event_candidates_);
+  step.before = start;
   // The decisions at the step's end are known (step.decision) only if it ends without an event.
   step.decision.reset();
   const bool to_step_end = step.ends == AdaptiveStepper::End::step;
@@ -156,6 +157,7 @@ void Contact::locate_decision_change(AdaptiveStepper& step, double t0, double t_
   search.hi_holds_known = true;
   step.end = locate(lo, hi, search, differs, monotone).hi;
   step.ends = AdaptiveStepper::End::event;
+  step.crossing = false;
 }
 
 // The paper's stability margin (contact_update.cpp) at orientation qq for the current contact set.

@@ -114,6 +114,52 @@ void Contact::quiet_update() {
   trace_update();
 }
 
+// After a step that ended where a vertex crossed the ε band (step.crossing), while the support is a line
+// its point holds before the stability test has passed: the update would take the new contact set and change
+// nothing else if the decisions on it are those in force before the crossing (the type not a point, the line
+// holding, the test failing) and no point came within the touching tolerance of the wall. The rules are
+// then met as the full update meets them: one touching point (no rest, no edge balance, Algorithm 1's
+// support), which keeps its line and axis (choose_support). Then only the set changes, and true.
+bool Contact::quiet_crossing(AdaptiveStepper& step) {
+  const Tolerances& tol = run_.tol;
+  if (!band_events() || !support_.line || touching_.size() > 1 ||
+      (!touching_.empty() && touching_[0] != support_vertex_))
+    return false;
+  const Decision& before = step.before;
+  if (before.type == ContactType::point || !before.line_holds || before.stable || before.hold) return false;
+  // The set the update takes (update(): picked from the step's candidates; a vertex outside joins only
+  // with an entry).
+  const Vec3 r3 = run_.q.toRotationMatrix().row(2).transpose();
+  std::vector<int>& members = next_contact_;
+  vertices_below_among(run_.q, tol.band + tol.touch, event_candidates_, members);
+  if (!band_entered_)
+    std::erase_if(members, [&](int k) { return !in_contact_[k] && height_of(r3, k) > tol.band; });
+  decision_touching_.clear();
+  for (int k : members)
+    if (height_of(r3, k) <= tol.touch) decision_touching_.push_back(k);
+  if (decision_touching_ != touching_) return false;
+  contact_.swap(members);
+  const Decision after = decision_at(run_.q, true, event_candidates_);
+  if (!(after == before)) {
+    contact_.swap(members);
+    return false;
+  }
+  for (int k : members) in_contact_[k] = 0;
+  double lowest = INFINITY;
+  for (int k : contact_) {
+    z_[k] = height_of(r3, k);
+    lowest = std::min(lowest, z_[k]);
+    in_contact_[k] = 1;
+  }
+  for (int k : touching_) in_contact_[k] = kTouchingPoint;
+  run_.record.note_depth(-lowest);
+  trace_update();
+  // The search goes on from here with these decisions and the step's candidates.
+  step.decision = after;
+  step.keep_candidates = true;
+  return true;
+}
+
 void Contact::trace_update() const {
   if (run_.trace)
     std::fprintf(stderr,

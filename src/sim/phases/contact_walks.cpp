@@ -1,6 +1,8 @@
 // The vertex sets of the contact phase near the wall, found by walks over the hull's edge graph
 // (ConvexHull::neighbors) instead of scans, so a step costs about the vertices near the wall, not the hull's
 // size (docs/method.md, "No overlap, ever").
+#include <algorithm>
+
 #include "contact.hpp"
 
 namespace repose::sim {
@@ -37,6 +39,16 @@ bool Contact::band_matches_walk(double level, const std::vector<int>& picked) {
   std::vector<int> walked;
   vertices_below(run_.q, level, walked, true);
   return walked == picked;
+}
+
+// Whether the step's candidates hold every vertex a walk to `level` at orientation qq finds (the sanitizer
+// build checks every reuse of the candidates).
+bool Contact::candidates_cover(const Quat& qq, double level) {
+  std::vector<int> walked;
+  vertices_below(qq, level, walked, false);
+  std::vector<char> kept(z_.size(), 0);
+  for (int k : event_candidates_) kept[static_cast<std::size_t>(k)] = 1;
+  return std::all_of(walked.begin(), walked.end(), [&](int k) { return kept[static_cast<std::size_t>(k)]; });
 }
 
 // The height of the lowest hull vertex at the run's orientation (a walk downhill from the last lowest).
