@@ -114,19 +114,21 @@ void Contact::quiet_update() {
   trace_update();
 }
 
-// After a step that ended where a vertex crossed the ε band (step.crossing), while the support is a line
-// its point holds before the stability test has passed: the update would take the new contact set and change
-// nothing else if the decisions on it are those in force before the crossing (the type not a point, the line
-// holding, the test failing) and no point came within the touching tolerance of the wall. The rules are
-// then met as the full update meets them: one touching point (no rest, no edge balance, Algorithm 1's
-// support), which keeps its line and axis (choose_support). Then only the set changes, and true.
+// After a step that ended where a vertex crossed the ε band (step.crossing) before the stability test has
+// passed, with one touching point that is the support's: the update would take the new contact set and
+// change nothing else if the decisions on it are those in force before the crossing (the test failing, no
+// hold) and no point came within the touching tolerance of the wall, and the support's rule keeps it
+// (choose_support): a line its point holds is kept with its axis (while the type is no point and the line
+// holds), and a point pivot is kept until a point enters the band (so across a vertex leaving it). One
+// touching point holds no rest and no edge balance. Then only the set changes (and the remembered axis, as
+// the update remembers it), and true.
 bool Contact::quiet_crossing(AdaptiveStepper& step) {
   const Tolerances& tol = run_.tol;
-  if (!band_events() || !support_.line || touching_.size() > 1 ||
-      (!touching_.empty() && touching_[0] != support_vertex_))
+  if (!band_events() || touching_.size() > 1 || (!touching_.empty() && touching_[0] != support_vertex_))
     return false;
   const Decision& before = step.before;
-  if (before.type == ContactType::point || !before.line_holds || before.stable || before.hold) return false;
+  if (before.stable || before.hold) return false;
+  if (support_.line ? before.type == ContactType::point || !before.line_holds : band_entered_) return false;
   // The set the update takes (update(): picked from the step's candidates; a vertex outside joins only
   // with an entry).
   const Vec3 r3 = run_.q.toRotationMatrix().row(2).transpose();
@@ -153,6 +155,7 @@ bool Contact::quiet_crossing(AdaptiveStepper& step) {
   }
   for (int k : touching_) in_contact_[k] = kTouchingPoint;
   run_.record.note_depth(-lowest);
+  remember_axis(rot_.omega);
   trace_update();
   // The search goes on from here with these decisions and the step's candidates.
   step.decision = after;
