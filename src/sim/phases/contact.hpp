@@ -4,7 +4,8 @@
 // centre of mass over a stable hull face. The files:
 //   contact.cpp                 the phase's start and step, its energy
 //   contact_paper_step.cpp      the paper's fixed step (Eqs 10-16), its events bracketed by halving
-//   contact_adaptive_step.cpp   the adaptive integrator's step and its events on the dense output
+//   contact_adaptive_step.cpp   the adaptive integrator's step: energy bounds, candidates, event samples
+//   contact_step_events.cpp     the step's first event on the dense output
 //   contact_decisions.cpp       the contact decisions at any instant of a step, and where they change
 //   contact_update.cpp          after a step: the contact set, Algorithm 1, the paper's stability test
 //   contact_support.cpp         the support the contacts call for, a line's support test, edge balances
@@ -136,7 +137,7 @@ class Contact {
   struct StepVertices;
   EventFlags adaptive_event_at(const Quat& qq, const StepVertices& v) const;
   double event_margin(const Quat& qq, const StepVertices& v) const;
-  void select_bracket_vertices(const Quat& q_lo, double turn);
+  void select_event_vertices(const StepVertices& from, const Quat& q_lo, double turn, StepVertices& out);
 
   // ---- the steppers: one is chosen from SettleParams::integrator when the phase is built (stepper_)
   // The paper's fixed step (Eqs 10-16): every event bracketed by halving; after a step every vertex's
@@ -264,9 +265,11 @@ class Contact {
     }
   };
   StepVertices step_vertices_;
-  // Of those, the ones that can decide the search of an event's bracket (select_bracket_vertices).
+  // Of those, the ones that can decide the search of an event's bracket, and of the narrower brackets of the
+  // root finder, alternately (select_event_vertices).
   StepVertices bracket_vertices_;
-  std::vector<double> margin_scratch_;  // select_bracket_vertices' lower bounds of the margins
+  std::array<StepVertices, 2> narrow_vertices_;
+  std::vector<double> margin_scratch_;  // select_event_vertices' lower bounds of the margins
   NearWall walks_;                      // the walks of the vertex sets near the wall (contact_walks.cpp)
 };
 

@@ -145,7 +145,7 @@ void Contact::begin_adaptive_step(AdaptiveStepper& step) {
   if (std::exchange(step.keep_candidates, false))
     assert(candidates_cover(rot_.q, reach_level));
   else
-    vertices_below(rot_.q, reach_level, event_candidates_, false);
+    vertices_below(rot_.q, reach_level, event_candidates_, true);  // sorted once for the picks from them
   const Vec3 r3 = rot_.q.toRotationMatrix().row(2).transpose();
   StepVertices& packed = step_vertices_;
   packed.clear();
@@ -179,110 +179,6 @@ void Contact::begin_adaptive_step(AdaptiveStepper& step) {
   }
   const double before_event = locate_step_event(step, times[first - 1], times[first], at_first);
   locate_decision_change(step, t0, before_event, std::span(times).subspan(1, first - 1));
-}
-
-// The first event in [lo, hi] (none at lo, one at hi), over the vertices that can reach an event level in
-// the step, on the smallest event margin (continuous in time). As in the fixed step: the step ends just
-// after a band event, just before a vertex reaches the wall. Only an entry counts as "a point entered the
-// band" for the choice of support (a point that leaves it does not), and not once the stability test has
-// passed. Returns the bracket's lower end, the last instant known to be before the event.
-double Contact::locate_step_event(AdaptiveStepper& step, double lo, double hi, const EventFlags& at_hi) {
-  EventSearch search;
-  search.resolution = (hi - lo) * (kEventResolution * tol::kEventSamples);  // the bracket is 1/8 of the step
-  search.max_halvings = kMaxHalvings;
-  search.hi_holds_known = true;
-  // Only the vertices that can decide the search take part in it: |ω| ≤ rate_bound over the step, so in
-  // the bracket a vertex at distance d from the pivot moves by at most rate_bound·(hi − lo)·d.
-  const double turn = tol::kBracketTurnMargin * rate_bound(step.integrator.time() - run_.t) * (hi - lo);
-  select_bracket_vertices(step.integrator.orientation_at(lo), turn);
-  const StepVertices& v = bracket_vertices_;
-  // The events at the bracket's upper end: at hi, or at the last instant tested at which one held.
-  double held_at = hi;
-  EventFlags held = at_hi;
-  const Located at = locate(
-      lo, hi, search,
-      [&](double s) {
-        const EventFlags e = adaptive_event_at(step.integrator.orientation_at(s), v);
-        assert(e.any == adaptive_event_at(step.integrator.orientation_at(s), step_vertices_).any);
-        if (e.any) std::tie(held_at, held) = std::pair{s, e};
-        return e.any;
-      },
-      monotone,
-      [&](double s) {
-        const double m = event_margin(step.integrator.orientation_at(s), v);
-        assert(m == event_margin(step.integrator.orientation_at(s), step_vertices_));
-        return m;
-      });
-  const EventFlags flags =
-      held_at == at.hi ? held : adaptive_event_at(step.integrator.orientation_at(at.hi), v);
-  if (!flags.pierced && flags.entered && !finishing_) step.ends = AdaptiveStepper::End::band_entry;
-  step.crossing = !flags.pierced && band_events();
-  step.end = flags.pierced ? at.lo : at.hi;
-  return at.lo;
-}
-
-// The step's packed vertices that can decide the search of a bracket from orientation q_lo in which the
-// particle turns by at most `turn` (rad): those that can reach one of their events in it, and those that can
-// hold the smallest margin anywhere in it (the event margin over them is the margin over all, to the bit).
-// A vertex whose margin m at q_lo changes by at most r = turn·d in the bracket can be neither where
-// m − r exceeds every other vertex's m + r and zero (with the event tolerance's slack).
-void Contact::select_bracket_vertices(const Quat& q_lo, double turn) {
-  const Vec3 r3 = q_lo.toRotationMatrix().row(2).transpose();
-  const StepVertices& v = step_vertices_;
-  const double base = support_.world.z();
-  margin_scratch_.resize(v.offset.size());
-  double bound = INFINITY;  // of the smallest margin anywhere in the bracket
-  for (std::size_t i = 0; i < v.offset.size(); ++i) {
-    const double zk = base + r3.dot(v.offset[i]);
-    double m = std::min(zk - v.pierce[i], v.rise[i] - zk);
-    if (v.enter[i] > -INFINITY) m = std::min(m, zk - v.enter[i]);
-    const double reach = turn * v.distance[i];
-    margin_scratch_[i] = m - reach;
-    bound = std::min(bound, m + reach);
-  }
-  const double keep = std::max(bound, 0.0) + run_.tol.event;
-  StepVertices& out = bracket_vertices_;
-  out.clear();
-  for (std::size_t i = 0; i < v.offset.size(); ++i) {
-    if (!(margin_scratch_[i] <= keep)) continue;
-    out.offset.push_back(v.offset[i]);
-    out.distance.push_back(v.distance[i]);
-    out.pierce.push_back(v.pierce[i]);
-    out.rise.push_back(v.rise[i]);
-    out.enter.push_back(v.enter[i]);
-  }
-}
-
-// The adaptive integrator's events: those of the fixed step, and a contact leaving the ε band (Algorithm
-// 1's contact set shrinks: a line or surface contact may become a point), over the vertices `v` (the step's
-// reachable ones, or those of a bracket).
-Contact::EventFlags Contact::adaptive_event_at(const Quat& qq, const StepVertices& v) const {
-  const Vec3 r3 = qq.toRotationMatrix().row(2).transpose();
-  const double base = support_.world.z();  // height_of(r3, k), from the packed offsets
-  bool left = false;
-  EventFlags e;
-  for (std::size_t i = 0; i < v.offset.size(); ++i) {
-    const double zk = base + r3.dot(v.offset[i]);
-    e.pierced = e.pierced || zk < v.pierce[i];
-    e.entered = e.entered || zk <= v.enter[i];
-    left = left || zk > v.rise[i];
-  }
-  e.any = e.pierced || e.entered || left;
-  return e;
-}
-
-// The smallest margin of the reachable vertices to their events at orientation qq (length): negative once
-// one has passed below the wall or left the band, zero or negative once one has entered it.
-double Contact::event_margin(const Quat& qq, const StepVertices& v) const {
-  const Vec3 r3 = qq.toRotationMatrix().row(2).transpose();
-  const double base = support_.world.z();
-  double m = INFINITY;
-  for (std::size_t i = 0; i < v.offset.size(); ++i) {
-    const double zk = base + r3.dot(v.offset[i]);
-    m = std::min({m, zk - v.pierce[i], v.rise[i] - zk});
-    if (v.enter[i] > -INFINITY) m = std::min(m, zk - v.enter[i]);
-  }
-  return m;
 }
 
 }  // namespace repose::sim

@@ -2,6 +2,7 @@
 // (ConvexHull::neighbors) instead of scans, so a step costs about the vertices near the wall, not the hull's
 // size (docs/method.md, "No overlap, ever").
 #include <algorithm>
+#include <cassert>
 
 #include "contact.hpp"
 
@@ -21,16 +22,18 @@ void Contact::vertices_below(const Quat& qq, double level, std::vector<int>& out
   if (sorted) walks_.sort_ids(out);
 }
 
-// The same set, sorted, when it is known to lie within `among` (a superset): the members are picked from it
-// by the same test, with no walk. The walk to the lowest vertex is still made (later walks start there).
+// The same set, sorted, when it is known to lie within `among` (a superset, in increasing order, as the
+// step's candidates are kept: picking keeps the order, so no set picked a step's many times is sorted): the
+// members are picked from it by the same test, with no walk. The walk to the lowest vertex is still made
+// (later walks start there).
 void Contact::vertices_below_among(const Quat& qq, double level, std::span<const int> among,
                                    std::vector<int>& out) {
+  assert(std::is_sorted(among.begin(), among.end()));
   const Vec3 r3 = qq.toRotationMatrix().row(2).transpose();
   walks_.lowest_along(-r3);
   out.clear();
   for (int k : among)
     if (height_of(r3, k) <= level) out.push_back(k);
-  walks_.sort_ids(out);
 }
 
 // Whether the band picked from the step's candidates is the one a walk finds (the sanitizer build checks
