@@ -227,6 +227,9 @@ inline constexpr double kPolished = 1e-10;
 inline constexpr int kNewtonSteps = 30;
 inline constexpr int kNewtonHalvings = 40;
 inline constexpr int kNewtonStackPoints = 8;
+/// The points up to which the contact solvers' per-point arrays are held inline (solver/point_list.hpp): a
+/// frictional step on a face's corners or a grain's few allocates nothing; more points grow on the heap.
+inline constexpr std::size_t kInlinePoints = 8;
 /// A point at rest's force on its cone: Newton's steps on the secular equation (converges in a few; the
 /// bound keeps it finite), and its bracket's doublings or halvings (2^±1100 covers every double).
 inline constexpr int kCapSearchSteps = 200;

@@ -15,7 +15,7 @@ MultiImpactOutcome collide_points(double mass, const Mat3& inertia, const std::v
   ContactProblem problem;
   problem.mass = mass;
   problem.inverse_inertia = inertia.inverse();
-  problem.arms = arms;
+  problem.arms.assign(arms.begin(), arms.end());
   problem.friction = law.friction;
   problem.scale = 0;
   for (std::size_t i = 0; i < n; ++i)
@@ -38,7 +38,7 @@ MultiImpactOutcome collide_points(double mass, const Mat3& inertia, const std::v
   }
   out.converged = compression.converged;
   Motion after{compression.lin, compression.ang};
-  std::vector<Vec3> total = compression.reactions;
+  std::vector<Vec3> total(compression.reactions.begin(), compression.reactions.end());
   if (law.restitution > 0) {
     // Restitution: Poisson's at each point, friction within μ times it; never above the energy before the
     // impact: the normal impulses halved (and friction solved again) until so.

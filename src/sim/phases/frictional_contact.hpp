@@ -16,6 +16,7 @@
 
 #include <Eigen/Dense>
 #include <optional>
+#include <span>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -94,8 +95,7 @@ class FrictionalContact {
   void count_fallbacks(const ContactForces& f) const;
   ContactForces forces_at(const BodyState& s) const;  // at the segment's points, by their rules
   ContactForces forces_at(const BodyState& s, const std::vector<int>& points,
-                          std::vector<PointCondition> conditions,
-                          const std::vector<Vec3>* warm = nullptr) const;
+                          std::span<const PointCondition> conditions, std::span<const Vec3> warm = {}) const;
   // The first event in (a, b], or +∞.
   double locate_event(double a, double b);
   // Before the first segment: the points within the band, and how many of them slip.
@@ -112,7 +112,7 @@ class FrictionalContact {
   std::vector<int> at_rest_before_;         // the points at rest in the segment before (hull vertices)
   std::vector<int> sliding_before_;         // and those sliding
   ContactForces forces_;                    // at the segment's start
-  std::vector<Vec3> warm_start_;            // forces_' forces, where the sweeps of the rates start
+  PointList<Vec3> warm_start_;              // forces_' forces, where the sweeps of the rates start
   WallCrossing wall_;                       // the touch search, its working memory kept from step to step
   std::vector<char> on_wall_;  // by hull vertex: in active_ (its level: the drift it may sink by)
   double step_end_ = -INFINITY;

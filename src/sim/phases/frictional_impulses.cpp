@@ -20,9 +20,10 @@ namespace repose::sim {
 // cascade's energy (below m·|a_n|·band) in the impact's loss.
 bool FrictionalContact::resolve_impacts() {
   Run& run = run_;
-  std::vector<Vec3> arms;
-  std::vector<int> others;  // the points on the wall not approaching it
-  std::vector<PointCondition> other_conditions;
+  // Inline lists: this runs after every step of the phase, and most find no impact.
+  PointList<Vec3> arms;
+  PointList<int> others;  // the points on the wall not approaching it
+  PointList<PointCondition> other_conditions;
   double fastest = 0;
   Vec3 fastest_arm = Vec3::Zero();
   for (std::size_t i = 0; i < active_.size(); ++i) {
@@ -50,8 +51,8 @@ bool FrictionalContact::resolve_impacts() {
   double restitution = fastest > elastic ? run.params.restitution : 0.0;
   const double rebound = restitution * fastest;
   if (rebound > 0 && rebound <= tol::kZenoReach * run.tol.separation_speed) {
-    const ContactForces f =
-        forces_at({run.com, velocity_, run.q, omega_}, others, other_conditions);  // the others' forces
+    const ContactForces f = forces_at({run.com, velocity_, run.q, omega_}, {others.begin(), others.end()},
+                                      view(other_conditions));  // the others' forces
     const double a_n = point_acceleration(f.acceleration, f.angular_acceleration, omega_, fastest_arm).z();
     if (a_n < 0 && rebound * rebound <= 2 * -a_n * run.tol.frictional_band) {
       restitution = 0;
@@ -59,7 +60,8 @@ bool FrictionalContact::resolve_impacts() {
     }
   }
   const ImpactLaw law{restitution, run.params.friction};
-  const Impact::Outcome out = Impact(run).resolve({velocity_, omega_}, arms, law, true);
+  const Impact::Outcome out =
+      Impact(run).resolve({velocity_, omega_}, std::vector<Vec3>(arms.begin(), arms.end()), law, true);
   velocity_ = out.motion.velocity;
   omega_ = out.motion.omega;
   return true;

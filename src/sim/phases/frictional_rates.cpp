@@ -9,18 +9,18 @@
 namespace repose::sim {
 
 ContactForces FrictionalContact::forces_at(const BodyState& s) const {
-  return forces_at(s, active_, conditions_, &warm_start_);
+  return forces_at(s, active_, conditions_, view(warm_start_));
 }
 
 ContactForces FrictionalContact::forces_at(const BodyState& s, const std::vector<int>& points,
-                                           std::vector<PointCondition> conditions,
-                                           const std::vector<Vec3>* warm) const {
+                                           std::span<const PointCondition> start,
+                                           std::span<const Vec3> warm) const {
   const Run& run = run_;
   const Mat3 R = s.q.toRotationMatrix();
   const ContactBody body{run.body.mass, world_inertia(R, run.body.inertia), run.params.gravity,
                          run.params.damping};
-  std::vector<Vec3> arms(points.size());
-  const std::vector<PointCondition> start = conditions;
+  PointList<Vec3> arms(points.size());  // (inline: no allocation per evaluation of the rates)
+  PointList<PointCondition> conditions(start.begin(), start.end());
   for (std::size_t i = 0; i < points.size(); ++i) {
     arms[i] = s.q * run.particle.hull.vertices[static_cast<std::size_t>(points[i])];
     // A sliding point slides along its slip as it turns; past the instant its slip stops or turns against
@@ -30,8 +30,8 @@ ContactForces FrictionalContact::forces_at(const BodyState& s, const std::vector
     if (conditions[i].rule == PointRule::sliding && slip.dot(start[i].direction) > 0)
       conditions[i].direction = slip.normalized();
   }
-  return contact_forces(body, Motion{s.velocity, s.omega}, arms, run.params.friction, conditions,
-                        warm && warm->size() == points.size() ? warm : nullptr);
+  return contact_forces(body, Motion{s.velocity, s.omega}, view(arms), run.params.friction, view(conditions),
+                        warm);
 }
 
 void FrictionalContact::count_fallbacks(const ContactForces& f) const {

@@ -19,7 +19,7 @@ namespace {
 // enumerating its complementary sets. Empty where it has no solution (Painlevé's inconsistent case); else
 // the solution with the fewest pressed points (the first found).
 std::optional<Eigen::VectorXd> enumerate_sliding(const ContactProblem& p, const Vec3& lin, const Vec3& ang,
-                                                 const std::vector<PointCondition>& conditions) {
+                                                 std::span<const PointCondition> conditions) {
   const std::size_t n = p.arms.size();
   const auto size = static_cast<Eigen::Index>(n);
   Eigen::MatrixXd M(size, size);
@@ -65,9 +65,9 @@ std::optional<Eigen::VectorXd> enumerate_sliding(const ContactProblem& p, const 
 }
 }  // namespace
 
-ContactForces contact_forces(const ContactBody& body, const Motion& motion, const std::vector<Vec3>& arms,
+ContactForces contact_forces(const ContactBody& body, const Motion& motion, std::span<const Vec3> arms,
                              double friction, double slip_speed) {
-  std::vector<PointCondition> conditions(arms.size());
+  PointList<PointCondition> conditions(arms.size());
   for (std::size_t i = 0; i < arms.size(); ++i) {
     const Vec2 slip = (point_velocity(motion.velocity, motion.omega, arms[i])).head<2>();
     if (slip.norm() > slip_speed) {
@@ -75,19 +75,19 @@ ContactForces contact_forces(const ContactBody& body, const Motion& motion, cons
       conditions[i].direction = slip.normalized();
     }
   }
-  return contact_forces(body, motion, arms, friction, conditions);
+  return contact_forces(body, motion, arms, friction, view(conditions));
 }
 
-ContactForces contact_forces(const ContactBody& body, const Motion& motion, const std::vector<Vec3>& arms,
-                             double friction, const std::vector<PointCondition>& conditions,
-                             const std::vector<Vec3>* start) {
+ContactForces contact_forces(const ContactBody& body, const Motion& motion, std::span<const Vec3> arms,
+                             double friction, std::span<const PointCondition> conditions,
+                             std::span<const Vec3> start) {
   if (auto face = sliding_face(body, motion, arms, friction, conditions)) return *face;
   const std::size_t n = arms.size();
   const Vec3& w = motion.omega;
   ContactProblem problem;
   problem.mass = body.mass;
   problem.inverse_inertia = body.inertia.inverse();
-  problem.arms = arms;
+  problem.arms.assign(arms.begin(), arms.end());
   problem.friction = friction;
   // The accelerations without contact forces: gravity, the damping moment and the gyroscopic one.
   const Vec3 lin = Vec3(0, 0, -body.gravity);

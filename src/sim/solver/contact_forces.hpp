@@ -10,6 +10,7 @@
 // m·a = −m·g·ẑ + ΣF and I·α = −C·ω − ω × (I·ω) + Σ r_i × F_i (contact_problem.hpp solves it).
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "../impact/rigid_impact.hpp"
@@ -20,13 +21,13 @@ namespace repose::sim {
 enum class ContactMode { open, stick, slide };
 
 struct ContactForces {
-  std::vector<Vec3> forces;                  ///< on the body at each point, world frame
-  std::vector<ContactMode> modes;            ///< open (N = 0: lifting off or just touching), stick or slide
+  PointList<Vec3> forces;                    ///< on the body at each point, world frame
+  PointList<ContactMode> modes;              ///< open (N = 0: lifting off or just touching), stick or slide
   Vec3 acceleration = Vec3::Zero();          ///< of the centre of mass
   Vec3 angular_acceleration = Vec3::Zero();  ///< world frame
   bool converged = true;
-  int painleve = 0;                ///< sliding points with no consistent normal force (Painlevé's paradox)
-  std::vector<char> inconsistent;  ///< which points those are (1: Painlevé's case at that point)
+  int painleve = 0;              ///< sliding points with no consistent normal force (Painlevé's paradox)
+  PointList<char> inconsistent;  ///< which points those are (1: Painlevé's case at that point)
   /// Lemke's pyramid friction kept at points at rest (ContactSolution::pyramid): a fallback, counted.
   bool pyramid = false;
   /// No solution reached (Gauss–Seidel diverged and Lemke's method ended on a ray): the forces are zero and
@@ -43,13 +44,13 @@ struct ContactBody {
 
 /// The forces at the points `arms` (on the wall) of the body moving with `motion`; friction μ finite. A
 /// point slides along its slip if that is faster than `slip_speed`, else it is at rest on the wall.
-ContactForces contact_forces(const ContactBody& body, const Motion& motion, const std::vector<Vec3>& arms,
+ContactForces contact_forces(const ContactBody& body, const Motion& motion, std::span<const Vec3> arms,
                              double friction, double slip_speed);
 
 /// The same with each point's rule given (an event-driven phase keeps them between its events): `sliding`
 /// with its direction, or `unilateral` (at rest on the wall: it sticks or starts to slide).
-ContactForces contact_forces(const ContactBody& body, const Motion& motion, const std::vector<Vec3>& arms,
-                             double friction, const std::vector<PointCondition>& conditions,
-                             const std::vector<Vec3>* start = nullptr);
+ContactForces contact_forces(const ContactBody& body, const Motion& motion, std::span<const Vec3> arms,
+                             double friction, std::span<const PointCondition> conditions,
+                             std::span<const Vec3> start = {});
 
 }  // namespace repose::sim

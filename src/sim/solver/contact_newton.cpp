@@ -33,8 +33,7 @@ struct Residual {
 // The residual of the equations above at R, and (with_jacobian) an element of its generalized Jacobian.
 template <class Matrix, class Vector>
 Residual<Matrix, Vector> residual(const Matrix& W, const Vector& x0, const Vector& R, const Vector& rho,
-                                  double mu, const std::vector<PointCondition>& conditions,
-                                  bool with_jacobian) {
+                                  double mu, std::span<const PointCondition> conditions, bool with_jacobian) {
   const Eigen::Index n = static_cast<Eigen::Index>(conditions.size());
   const Vector x = x0 + W * R;
   Residual<Matrix, Vector> out;
@@ -83,9 +82,9 @@ Residual<Matrix, Vector> residual(const Matrix& W, const Vector& x0, const Vecto
 }
 
 template <class Matrix, class Vector>
-std::optional<std::vector<Vec3>> newton(const ContactProblem& p, const Vec3& lin, const Vec3& ang,
-                                        const std::vector<PointCondition>& conditions,
-                                        const std::vector<Vec3>& start) {
+std::optional<PointList<Vec3>> newton(const ContactProblem& p, const Vec3& lin, const Vec3& ang,
+                                      std::span<const PointCondition> conditions,
+                                      std::span<const Vec3> start) {
   const std::size_t n = p.arms.size();
   const Eigen::Index size = static_cast<Eigen::Index>(3 * n);
   Matrix W(size, size);
@@ -129,17 +128,17 @@ std::optional<std::vector<Vec3>> newton(const ContactProblem& p, const Vec3& lin
     at = residual(W, x0, R, rho, p.friction, conditions, true);
     merit = at.phi.squaredNorm();
   }
-  std::vector<Vec3> reactions(n);
+  PointList<Vec3> reactions(n);
   for (std::size_t i = 0; i < n; ++i) reactions[i] = R.template segment<3>(static_cast<Eigen::Index>(3 * i));
   return reactions;
 }
 
 }  // namespace
 
-std::optional<std::vector<Vec3>> solve_contacts_by_newton(const ContactProblem& p, const Vec3& lin,
-                                                          const Vec3& ang,
-                                                          const std::vector<PointCondition>& conditions,
-                                                          const std::vector<Vec3>& start) {
+std::optional<PointList<Vec3>> solve_contacts_by_newton(const ContactProblem& p, const Vec3& lin,
+                                                        const Vec3& ang,
+                                                        std::span<const PointCondition> conditions,
+                                                        std::span<const Vec3> start) {
   if (p.arms.size() <= tol::kNewtonStackPoints)
     return newton<SmallMatrix, SmallVector>(p, lin, ang, conditions, start);
   return newton<Eigen::MatrixXd, Eigen::VectorXd>(p, lin, ang, conditions, start);

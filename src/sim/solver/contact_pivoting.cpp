@@ -17,7 +17,7 @@ namespace repose::sim {
 // no solution (Painlevé's inconsistent case) or one it cannot reach (several solutions).
 std::optional<ContactSolution> solve_contacts_by_pivoting(const ContactProblem& p, const Vec3& lin,
                                                           const Vec3& ang,
-                                                          const std::vector<PointCondition>& conditions) {
+                                                          std::span<const PointCondition> conditions) {
   const std::size_t n = p.arms.size();
   // Each point's force directions (the columns G_i: F_i = G_i·z_i) and its first unknown's index.
   std::vector<Eigen::MatrixXd> G(n);

@@ -158,9 +158,9 @@ void apply_reactions(const ContactProblem& p, const Vec3& lin, const Vec3& ang, 
 
 // One block Gauss–Seidel sweep over the points; the largest change of a point's value it made. `at_start`:
 // scratch for the values at the sweep's start (a solve's sweeps share it).
-double sweep_once(const ContactProblem& p, const std::vector<Mat3>& diagonal,
-                  const std::vector<PointCondition>& conditions, ContactSolution& s, Counts& counts,
-                  std::vector<Vec3>& at_start) {
+double sweep_once(const ContactProblem& p, const PointList<Mat3>& diagonal,
+                  std::span<const PointCondition> conditions, ContactSolution& s, Counts& counts,
+                  PointList<Vec3>& at_start) {
   const std::size_t n = p.arms.size();
   at_start.resize(n);
   for (std::size_t i = 0; i < n; ++i) at_start[i] = point_value(p, i, s.lin, s.ang);
@@ -196,20 +196,20 @@ namespace {
 // a Gauss–Seidel sweep from Newton's reactions changes no value by more than tol::kPolished of the scale (a
 // solution of the exact problem to that accuracy; the sweep's own reactions are kept). Else the pyramid's
 // answer, flagged (ContactSolution::pyramid).
-ContactSolution exact_from_pyramid(const ContactProblem& p, const std::vector<Mat3>& diagonal,
-                                   const Vec3& lin, const Vec3& ang,
-                                   const std::vector<PointCondition>& conditions, ContactSolution pyramid) {
+ContactSolution exact_from_pyramid(const ContactProblem& p, const PointList<Mat3>& diagonal, const Vec3& lin,
+                                   const Vec3& ang, std::span<const PointCondition> conditions,
+                                   ContactSolution pyramid) {
   const bool at_rest = std::any_of(conditions.begin(), conditions.end(),
                                    [](const PointCondition& c) { return c.rule == PointRule::unilateral; });
   if (!at_rest) return pyramid;  // sliding points only: Lemke's problem is the exact one
   const std::size_t n = p.arms.size();
   if (n <= tol::kMaxPolishedPoints) {
-    if (auto newton = solve_contacts_by_newton(p, lin, ang, conditions, pyramid.reactions)) {
+    if (auto newton = solve_contacts_by_newton(p, lin, ang, conditions, view(pyramid.reactions))) {
       ContactSolution s;
       s.reactions = *newton;
       apply_reactions(p, lin, ang, s);
       Counts counts;
-      std::vector<Vec3> at_start;
+      PointList<Vec3> at_start;
       const double change = sweep_once(p, diagonal, conditions, s, counts, at_start);
       if (change <= tol::kPolished * p.scale && counts.painleve == 0 && counts.unresolved == 0) return s;
     }
@@ -220,18 +220,17 @@ ContactSolution exact_from_pyramid(const ContactProblem& p, const std::vector<Ma
 }  // namespace
 
 ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const Vec3& ang,
-                               const std::vector<PointCondition>& conditions,
-                               const std::vector<Vec3>* start) {
+                               std::span<const PointCondition> conditions, std::span<const Vec3> start) {
   const std::size_t n = p.arms.size();
-  std::vector<Mat3> diagonal(n);
+  PointList<Mat3> diagonal(n);
   for (std::size_t i = 0; i < n; ++i) diagonal[i] = delassus_block(p.mass, p.inverse_inertia, p.arms[i]);
   ContactSolution s;
   s.reactions.assign(n, Vec3::Zero());
   s.lin = lin;
   s.ang = ang;
-  if (start && start->size() == n) {
+  if (start.size() == n) {
     for (std::size_t i = 0; i < n; ++i) {
-      const Vec3& r = (*start)[i];
+      const Vec3& r = start[i];
       if (!r.allFinite()) continue;
       s.reactions[i] = r;
       s.lin += r / p.mass;
@@ -240,7 +239,7 @@ ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const V
   }
   double previous_change = INFINITY;
   int next_polish = tol::kSweepsBeforeNewton;
-  std::vector<Vec3> at_start(n);
+  PointList<Vec3> at_start(n);
   for (int sweep = 0; sweep < tol::kContactSweeps; ++sweep) {
     Counts counts;
     const double change = sweep_once(p, diagonal, conditions, s, counts, at_start);
@@ -270,7 +269,7 @@ ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const V
         counts.unresolved == 0) {
       next_polish = 2 * (sweep + 1);
       // Polished by Newton's method; the sweeps' own test then accepts the result or sweeps on from it.
-      if (auto newton = solve_contacts_by_newton(p, lin, ang, conditions, s.reactions)) {
+      if (auto newton = solve_contacts_by_newton(p, lin, ang, conditions, view(s.reactions))) {
         s.reactions = *newton;
         s.lin = lin;
         s.ang = ang;

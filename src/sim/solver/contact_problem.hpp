@@ -19,9 +19,11 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "../body/kinematics.hpp"
+#include "point_list.hpp"
 #include "repose/geometry/types.hpp"
 
 namespace repose::sim {
@@ -37,14 +39,14 @@ struct PointCondition {
 struct ContactProblem {
   double mass = 1;
   Mat3 inverse_inertia = Mat3::Identity();  ///< world frame
-  std::vector<Vec3> arms;                   ///< r_i
-  std::vector<Vec3> offsets;                ///< empty: none
+  PointList<Vec3> arms;                     ///< r_i
+  PointList<Vec3> offsets;                  ///< empty: none
   double friction = 0;                      ///< μ, finite
   double scale = 1;                         ///< of the values, for the tolerances
 };
 
 struct ContactSolution {
-  std::vector<Vec3> reactions;
+  PointList<Vec3> reactions;
   Vec3 lin = Vec3::Zero(), ang = Vec3::Zero();  ///< with the reactions
   /// Within the sweep bound, and every sliding direction found (where one was not, not met in the tests, the
   /// point took the frictionless plastic reaction).
@@ -59,10 +61,9 @@ struct ContactSolution {
 };
 
 /// The reactions from the body's state (lin, ang) without them. The sweeps start from `start`'s reactions if
-/// given (a nearby problem's: warm-started), else from none.
+/// it has one per point (a nearby problem's: warm-started), else from none.
 ContactSolution solve_contacts(const ContactProblem& problem, const Vec3& lin, const Vec3& ang,
-                               const std::vector<PointCondition>& conditions,
-                               const std::vector<Vec3>* start = nullptr);
+                               std::span<const PointCondition> conditions, std::span<const Vec3> start = {});
 
 /// The same as one linear complementarity problem solved by Lemke's method (solve_contacts' fallback where
 /// Gauss–Seidel does not converge): a point at rest has a friction pyramid of 12 edges (its force falls short
@@ -70,15 +71,15 @@ ContactSolution solve_contacts(const ContactProblem& problem, const Vec3& lin, c
 /// has no solution Lemke's method reaches (Painlevé's cases).
 std::optional<ContactSolution> solve_contacts_by_pivoting(const ContactProblem& problem, const Vec3& lin,
                                                           const Vec3& ang,
-                                                          const std::vector<PointCondition>& conditions);
+                                                          std::span<const PointCondition> conditions);
 
 /// Newton's method on the problem's Alart–Curnier equations from the reactions `start` (solve_contacts'
 /// polish where Gauss–Seidel creeps): the reactions it reached, a solution or the best it found. Empty where
 /// the data are not finite.
-std::optional<std::vector<Vec3>> solve_contacts_by_newton(const ContactProblem& problem, const Vec3& lin,
-                                                          const Vec3& ang,
-                                                          const std::vector<PointCondition>& conditions,
-                                                          const std::vector<Vec3>& start);
+std::optional<PointList<Vec3>> solve_contacts_by_newton(const ContactProblem& problem, const Vec3& lin,
+                                                        const Vec3& ang,
+                                                        std::span<const PointCondition> conditions,
+                                                        std::span<const Vec3> start);
 
 /// One point's sliding reaction R = (−μ·λ·ŝ, λ) on the edge of its friction cone, with its slip after it
 /// (x = f + W·R, `f` its value without it, W its Delassus block) along ŝ: a root of the secular equation

@@ -23,7 +23,7 @@ using FaceMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 11, 
 
 struct FaceSolution {
   FaceVector x;  // a (3), α (3), c (3), then the sticking point's tangential force (2)
-  std::vector<double> normals;
+  PointList<double> normals;
   Vec3 acceleration(const Motion& m, const Vec3& r) const {
     return x.segment<3>(0) + Vec3(x.segment<3>(3)).cross(r) + m.omega.cross(m.omega.cross(r));
   }
@@ -33,8 +33,8 @@ struct FaceSolution {
 // tangential acceleration: linear in (a, α, c, f). Points in `loaded` carry N_i = b_i·c; sliding ones take
 // F_i = N_i·(−μ·ŝ_i, 1), the sticking one F = (f, N).
 std::optional<FaceSolution> solve_face(const ContactBody& body, const Motion& motion,
-                                       const std::vector<Vec3>& arms, double mu,
-                                       const std::vector<Vec2>& directions, const std::vector<char>& loaded,
+                                       std::span<const Vec3> arms, double mu,
+                                       const PointList<Vec2>& directions, const PointList<char>& loaded,
                                        std::size_t sticking) {
   const std::size_t n = arms.size();
   Vec2 centre = Vec2::Zero();
@@ -108,9 +108,9 @@ std::optional<FaceSolution> solve_face(const ContactBody& body, const Motion& mo
 // lopsided face), the roots of ŝ(θ) × a_t(θ) with ŝ·a_t > 0 are scanned on tol::kDirectionSamples angles and
 // bisected, and the one nearest `guess` is taken. `directions[at_rest]` is set to the direction found.
 std::optional<FaceSolution> starting_slip(const ContactBody& body, const Motion& motion,
-                                          const std::vector<Vec3>& arms, double mu,
-                                          std::vector<Vec2>& directions, const std::vector<char>& loaded,
-                                          std::size_t at_rest, const Vec2& guess) {
+                                          std::span<const Vec3> arms, double mu, PointList<Vec2>& directions,
+                                          const PointList<char>& loaded, std::size_t at_rest,
+                                          const Vec2& guess) {
   const auto slip_at = [&](const Vec2& s) -> std::optional<std::pair<FaceSolution, Vec2>> {
     directions[at_rest] = s;
     auto face = solve_face(body, motion, arms, mu, directions, loaded, kNone);
@@ -168,12 +168,12 @@ std::optional<FaceSolution> starting_slip(const ContactBody& body, const Motion&
 }  // namespace
 
 std::optional<ContactForces> sliding_face(const ContactBody& body, const Motion& motion,
-                                          const std::vector<Vec3>& arms, double mu,
-                                          const std::vector<PointCondition>& conditions) {
+                                          std::span<const Vec3> arms, double mu,
+                                          std::span<const PointCondition> conditions) {
   const std::size_t n = arms.size();
   if (n < 3) return std::nullopt;
   std::size_t at_rest = kNone;
-  std::vector<Vec2> directions(n);
+  PointList<Vec2> directions(n);
   for (std::size_t i = 0; i < n; ++i) {
     directions[i] = conditions[i].direction;
     if (conditions[i].rule == PointRule::sliding) continue;
@@ -185,7 +185,7 @@ std::optional<ContactForces> sliding_face(const ContactBody& body, const Motion&
   // slide against the acceleration of its slip (the direction found by fixed-point rounds), and the whole
   // solution, not only that point's force, is checked for pulling points again (issue 48: a face solved
   // again for a slide gave other points N < 0).
-  std::vector<char> loaded(n, 1);
+  PointList<char> loaded(n, 1);
   std::optional<FaceSolution> face;
   bool slides = false;
   const auto worst_of = [&](const FaceSolution& f) {
@@ -204,7 +204,7 @@ std::optional<ContactForces> sliding_face(const ContactBody& body, const Motion&
     if (slides) {
       // Sticking would take more than the cone holds (or pull): the slip starts, if a direction exists.
       const Vec2 guess = face->x.segment<2>(9).norm() > 0 ? Vec2(-face->x.segment<2>(9)) : Vec2::UnitX();
-      std::vector<Vec2> trial = directions;
+      PointList<Vec2> trial = directions;
       if (auto sliding = starting_slip(body, motion, arms, mu, trial, loaded, at_rest, guess)) {
         face = std::move(sliding);
         directions = trial;

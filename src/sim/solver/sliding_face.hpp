@@ -9,6 +9,7 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "contact_forces.hpp"
@@ -19,7 +20,7 @@ namespace repose::sim {
 /// three non-collinear points carrying load (the face tips about an edge or a corner), more than one point at
 /// rest, a singular system, or a starting slip whose direction was not found.
 std::optional<ContactForces> sliding_face(const ContactBody& body, const Motion& motion,
-                                          const std::vector<Vec3>& arms, double mu,
-                                          const std::vector<PointCondition>& conditions);
+                                          std::span<const Vec3> arms, double mu,
+                                          std::span<const PointCondition> conditions);
 
 }  // namespace repose::sim

@@ -110,9 +110,10 @@ TEST(ContactProblem, NewtonsMethodConvergesFromNearASolution) {
   for (int trial = 0; trial < 500; ++trial) {
     const EdgeCase c = random_edge(rng);
     const std::vector<PointCondition> unilateral(2);
-    std::vector<Vec3> start = solve_contacts(c.problem, c.lin, c.ang, unilateral).reactions;
+    const PointList<Vec3> solved = solve_contacts(c.problem, c.lin, c.ang, unilateral).reactions;
+    std::vector<Vec3> start(solved.begin(), solved.end());
     for (Vec3& r : start) r += 1e-3 * c.problem.mass * c.problem.scale * Vec3(u(rng), u(rng), u(rng));
-    const std::optional<std::vector<Vec3>> newton =
+    const std::optional<PointList<Vec3>> newton =
         solve_contacts_by_newton(c.problem, c.lin, c.ang, unilateral, start);
     ASSERT_TRUE(newton);
     ContactSolution s;
