@@ -19,7 +19,7 @@ ContactForces FrictionalContact::forces_at(const BodyState& s, const std::vector
   const Mat3 R = s.q.toRotationMatrix();
   const ContactBody body{run.body.mass, world_inertia(R, run.body.inertia), run.params.gravity,
                          run.params.damping};
-  PointList<Vec3> arms(points.size());  // (inline: no allocation per evaluation of the rates)
+  PointList<Vec3> arms(points.size(), Vec3::Zero());  // (inline: no allocation per evaluation of the rates)
   PointList<PointCondition> conditions(start.begin(), start.end());
   for (std::size_t i = 0; i < points.size(); ++i) {
     arms[i] = s.q * run.particle.hull.vertices[static_cast<std::size_t>(points[i])];

@@ -92,7 +92,7 @@ ContactForces contact_forces(const ContactBody& body, const Motion& motion, std:
   // The accelerations without contact forces: gravity, the damping moment and the gyroscopic one.
   const Vec3 lin = Vec3(0, 0, -body.gravity);
   const Vec3 ang = problem.inverse_inertia * (-body.damping * w - w.cross(body.inertia * w));
-  problem.offsets.resize(n);
+  problem.offsets.resize(n, Vec3::Zero());
   problem.scale = body.gravity;
   for (std::size_t i = 0; i < n; ++i) {
     problem.offsets[i] = w.cross(w.cross(arms[i]));  // centripetal

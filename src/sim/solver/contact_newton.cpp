@@ -128,7 +128,7 @@ std::optional<PointList<Vec3>> newton(const ContactProblem& p, const Vec3& lin, 
     at = residual(W, x0, R, rho, p.friction, conditions, true);
     merit = at.phi.squaredNorm();
   }
-  PointList<Vec3> reactions(n);
+  PointList<Vec3> reactions(n, Vec3::Zero());
   for (std::size_t i = 0; i < n; ++i) reactions[i] = R.template segment<3>(static_cast<Eigen::Index>(3 * i));
   return reactions;
 }

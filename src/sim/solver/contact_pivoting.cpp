@@ -64,7 +64,7 @@ std::optional<ContactSolution> solve_contacts_by_pivoting(const ContactProblem& 
       solve_lcp(M, q, static_cast<int>(tol::kLemkePivotsPerUnknown * size + tol::kLemkePivotsBase));
   if (!z || !z->allFinite()) return std::nullopt;
   ContactSolution s;
-  s.reactions.resize(n);
+  s.reactions.resize(n, Vec3::Zero());
   s.lin = lin;
   s.ang = ang;
   for (std::size_t i = 0; i < n; ++i) {

@@ -162,7 +162,7 @@ double sweep_once(const ContactProblem& p, const PointList<Mat3>& diagonal,
                   std::span<const PointCondition> conditions, ContactSolution& s, Counts& counts,
                   PointList<Vec3>& at_start) {
   const std::size_t n = p.arms.size();
-  at_start.resize(n);
+  at_start.resize(n, Vec3::Zero());
   for (std::size_t i = 0; i < n; ++i) at_start[i] = point_value(p, i, s.lin, s.ang);
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3 f = point_value(p, i, s.lin, s.ang) - diagonal[i] * s.reactions[i];
@@ -222,7 +222,7 @@ ContactSolution exact_from_pyramid(const ContactProblem& p, const PointList<Mat3
 ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const Vec3& ang,
                                std::span<const PointCondition> conditions, std::span<const Vec3> start) {
   const std::size_t n = p.arms.size();
-  PointList<Mat3> diagonal(n);
+  PointList<Mat3> diagonal(n, Mat3::Zero());
   for (std::size_t i = 0; i < n; ++i) diagonal[i] = delassus_block(p.mass, p.inverse_inertia, p.arms[i]);
   ContactSolution s;
   s.reactions.assign(n, Vec3::Zero());
@@ -239,7 +239,7 @@ ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const V
   }
   double previous_change = INFINITY;
   int next_polish = tol::kSweepsBeforeNewton;
-  PointList<Vec3> at_start(n);
+  PointList<Vec3> at_start(n, Vec3::Zero());
   for (int sweep = 0; sweep < tol::kContactSweeps; ++sweep) {
     Counts counts;
     const double change = sweep_once(p, diagonal, conditions, s, counts, at_start);

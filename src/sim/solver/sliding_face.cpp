@@ -173,7 +173,7 @@ std::optional<ContactForces> sliding_face(const ContactBody& body, const Motion&
   const std::size_t n = arms.size();
   if (n < 3) return std::nullopt;
   std::size_t at_rest = kNone;
-  PointList<Vec2> directions(n);
+  PointList<Vec2> directions(n, Vec2::Zero());
   for (std::size_t i = 0; i < n; ++i) {
     directions[i] = conditions[i].direction;
     if (conditions[i].rule == PointRule::sliding) continue;
@@ -221,7 +221,7 @@ std::optional<ContactForces> sliding_face(const ContactBody& body, const Motion&
   ContactForces out;
   out.acceleration = face->x.segment<3>(0);
   out.angular_acceleration = face->x.segment<3>(3);
-  out.forces.resize(n);
+  out.forces.resize(n, Vec3::Zero());
   out.modes.resize(n);
   out.inconsistent.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
