@@ -184,12 +184,6 @@ double sliding_compliance(const Mat3& W, double mu, const Vec2& direction) {
   return W(2, 2) - mu * W.block<1, 2>(2, 0).dot(direction);
 }
 
-Vec3 point_value(const ContactProblem& p, std::size_t i, const Vec3& lin, const Vec3& ang) {
-  Vec3 x = lin + ang.cross(p.arms[i]);
-  if (!p.offsets.empty()) x += p.offsets[i];
-  return x;
-}
-
 namespace {
 // Lemke's answer, whose points at rest have the pyramid's friction (up to 15° off the slip and 3.4 % short of
 // the cone), made exact where it can be (issue 48): Newton's method on the exact cone from it, accepted where

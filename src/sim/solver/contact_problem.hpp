@@ -93,7 +93,11 @@ std::optional<Vec3> sliding_reaction(const Mat3& W, const Vec3& f, double mu, do
 /// force drives it in.
 double sliding_compliance(const Mat3& W, double mu, const Vec2& direction);
 
-/// The value x_i of point i for (lin, ang).
-Vec3 point_value(const ContactProblem& problem, std::size_t i, const Vec3& lin, const Vec3& ang);
+/// The value x_i of point i for (lin, ang). Inline: the sweeps take it several times per point and sweep.
+inline Vec3 point_value(const ContactProblem& p, std::size_t i, const Vec3& lin, const Vec3& ang) {
+  Vec3 x = lin + ang.cross(p.arms[i]);
+  if (!p.offsets.empty()) x += p.offsets[i];
+  return x;
+}
 
 }  // namespace repose::sim
