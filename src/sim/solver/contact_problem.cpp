@@ -112,7 +112,27 @@ namespace {
 
 // One point's reaction given its value `f` without it (the others' reactions included) and its own block W of
 // the Delassus matrix (x = f + W·R), by its rule (contact_problem.hpp).
-Vec3 local_reaction(const Mat3& W, const Vec3& f, double mu, const PointCondition& c, Counts& counts) {
+// Each point's Delassus block, and for a point at rest (unilateral) its factorisation, which every sweep's
+// sticking reaction solves with: made once per solve, not once per sweep.
+struct DiagonalBlocks {
+  PointList<Mat3> W;
+  PointList<Eigen::LDLT<Mat3>> stick;  // (an empty factorisation where the point's rule is not unilateral)
+};
+
+DiagonalBlocks diagonal_blocks(const ContactProblem& p, std::span<const PointCondition> conditions) {
+  DiagonalBlocks d;
+  for (std::size_t i = 0; i < p.arms.size(); ++i) {
+    d.W.push_back(delassus_block(p.mass, p.inverse_inertia, p.arms[i]));
+    if (conditions[i].rule == PointRule::unilateral)
+      d.stick.emplace_back(d.W.back());
+    else
+      d.stick.emplace_back();
+  }
+  return d;
+}
+
+Vec3 local_reaction(const Mat3& W, const Eigen::LDLT<Mat3>& stick_solver, const Vec3& f, double mu,
+                    const PointCondition& c, Counts& counts) {
   const Eigen::Matrix2d wtt = W.topLeftCorner<2, 2>();
   const Vec2 wtn = W.block<2, 1>(0, 2);
   const Vec2 ft = f.head<2>();
@@ -129,7 +149,7 @@ Vec3 local_reaction(const Mat3& W, const Vec3& f, double mu, const PointConditio
   const double normal = c.normal;
   if (c.rule == PointRule::unilateral) {
     if (f.z() >= 0) return Vec3::Zero();
-    const Vec3 stick = -W.ldlt().solve(f);
+    const Vec3 stick = -stick_solver.solve(f);
     if (stick.z() > 0 && stick.head<2>().norm() <= mu * stick.z()) return stick;
     // Sliding: P = (−μλŝ, λ) with u_n = 0 and ŝ the direction of u_t after.
     const std::optional<Vec3> sliding = sliding_reaction(W, f, mu, -1);
@@ -158,15 +178,15 @@ void apply_reactions(const ContactProblem& p, const Vec3& lin, const Vec3& ang, 
 
 // One block Gauss–Seidel sweep over the points; the largest change of a point's value it made. `at_start`:
 // scratch for the values at the sweep's start (a solve's sweeps share it).
-double sweep_once(const ContactProblem& p, const PointList<Mat3>& diagonal,
+double sweep_once(const ContactProblem& p, const DiagonalBlocks& diagonal,
                   std::span<const PointCondition> conditions, ContactSolution& s, Counts& counts,
                   PointList<Vec3>& at_start) {
   const std::size_t n = p.arms.size();
   at_start.resize(n, Vec3::Zero());
   for (std::size_t i = 0; i < n; ++i) at_start[i] = point_value(p, i, s.lin, s.ang);
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec3 f = point_value(p, i, s.lin, s.ang) - diagonal[i] * s.reactions[i];
-    const Vec3 next = local_reaction(diagonal[i], f, p.friction, conditions[i], counts);
+    const Vec3 f = point_value(p, i, s.lin, s.ang) - diagonal.W[i] * s.reactions[i];
+    const Vec3 next = local_reaction(diagonal.W[i], diagonal.stick[i], f, p.friction, conditions[i], counts);
     const Vec3 delta = next - s.reactions[i];
     s.lin += delta / p.mass;
     s.ang += p.inverse_inertia * p.arms[i].cross(delta);
@@ -190,7 +210,7 @@ namespace {
 // a Gauss–Seidel sweep from Newton's reactions changes no value by more than tol::kPolished of the scale (a
 // solution of the exact problem to that accuracy; the sweep's own reactions are kept). Else the pyramid's
 // answer, flagged (ContactSolution::pyramid).
-ContactSolution exact_from_pyramid(const ContactProblem& p, const PointList<Mat3>& diagonal, const Vec3& lin,
+ContactSolution exact_from_pyramid(const ContactProblem& p, const DiagonalBlocks& diagonal, const Vec3& lin,
                                    const Vec3& ang, std::span<const PointCondition> conditions,
                                    ContactSolution pyramid) {
   const bool at_rest = std::any_of(conditions.begin(), conditions.end(),
@@ -216,8 +236,7 @@ ContactSolution exact_from_pyramid(const ContactProblem& p, const PointList<Mat3
 ContactSolution solve_contacts(const ContactProblem& p, const Vec3& lin, const Vec3& ang,
                                std::span<const PointCondition> conditions, std::span<const Vec3> start) {
   const std::size_t n = p.arms.size();
-  PointList<Mat3> diagonal(n, Mat3::Zero());
-  for (std::size_t i = 0; i < n; ++i) diagonal[i] = delassus_block(p.mass, p.inverse_inertia, p.arms[i]);
+  const DiagonalBlocks diagonal = diagonal_blocks(p, conditions);
   ContactSolution s;
   s.reactions.assign(n, Vec3::Zero());
   s.lin = lin;
