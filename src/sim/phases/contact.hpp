@@ -36,6 +36,7 @@
 #include "../run.hpp"
 #include "../wall/contact_type.hpp"
 #include "rest.hpp"
+#include "step_vertices.hpp"
 
 namespace repose::sim {
 
@@ -134,7 +135,6 @@ class Contact {
     bool any = false, pierced = false, entered = false;
   };
   EventFlags paper_event_at(const Quat& qq) const;
-  struct StepVertices;
   EventFlags adaptive_event_at(const Quat& qq, const StepVertices& v) const;
   double event_margin(const Quat& qq, const StepVertices& v) const;
   void select_event_vertices(const StepVertices& from, const Quat& q_lo, double turn, StepVertices& out);
@@ -248,22 +248,8 @@ class Contact {
   std::vector<double> next_z_;
   std::vector<int> next_contact_, decision_contact_, decision_touching_, decision_set_;
   std::vector<std::pair<double, double>> margin_samples_;  // brief_stability_pass's margins by time
-  // The step's reachable vertices packed for the event tests made at every instant of its event search: their
-  // offsets from the support point (body frame) and their event levels, all fixed within the step (enter: the
-  // band's level for a vertex that can enter it, else -inf). Contiguous, so the tests read no scattered
-  // per-vertex state: on fine hulls they are a third of a drop's time.
-  struct StepVertices {
-    std::vector<Vec3> offset;
-    std::vector<double> distance;  // |offset|
-    std::vector<double> pierce, rise, enter;
-    void clear() {
-      offset.clear();
-      distance.clear();
-      pierce.clear();
-      rise.clear();
-      enter.clear();
-    }
-  };
+  // The step's reachable vertices packed for the event tests made at every instant of its event search
+  // (step_vertices.hpp).
   StepVertices step_vertices_;
   // Of those, the ones that can decide the search of an event's bracket, and of the narrower brackets of the
   // root finder, alternately (select_event_vertices).

@@ -75,30 +75,29 @@ double Contact::locate_step_event(AdaptiveStepper& step, double lo, double hi, c
   return at.lo;
 }
 
-// Of the packed vertices `from`, into `out`, those that can decide an event search over an interval from
-// orientation q_lo in which the particle turns by at most `turn` (rad): those that can reach one of their
-// events in it, and those that can hold the smallest margin anywhere in it (the event margin over them is the
-// margin over `from`, to the bit). A vertex whose margin m at q_lo changes by at most r = turn·d in the
-// interval can be neither where m − r exceeds every other vertex's m + r and zero (with the event
-// tolerance's slack).
+// The selection (step_vertices.hpp) from orientation q_lo about the current support.
 void Contact::select_event_vertices(const StepVertices& from, const Quat& q_lo, double turn,
                                     StepVertices& out) {
-  const Vec3 r3 = q_lo.toRotationMatrix().row(2).transpose();
-  const double base = support_.world.z();
-  margin_scratch_.resize(from.offset.size());
+  sim::select_event_vertices(from, q_lo.toRotationMatrix().row(2).transpose(), support_.world.z(), turn,
+                             run_.tol.event, margin_scratch_, out);
+}
+
+void select_event_vertices(const StepVertices& from, const Vec3& r3, double base, double turn, double slack,
+                           std::vector<double>& scratch, StepVertices& out) {
+  scratch.resize(from.offset.size());
   double bound = INFINITY;  // of the smallest margin anywhere in the interval
   for (std::size_t i = 0; i < from.offset.size(); ++i) {
     const double zk = base + r3.dot(from.offset[i]);
     double m = std::min(zk - from.pierce[i], from.rise[i] - zk);
     if (from.enter[i] > -INFINITY) m = std::min(m, zk - from.enter[i]);
     const double reach = turn * from.distance[i];
-    margin_scratch_[i] = m - reach;
+    scratch[i] = m - reach;
     bound = std::min(bound, m + reach);
   }
-  const double keep = std::max(bound, 0.0) + run_.tol.event;
+  const double keep = std::max(bound, 0.0) + slack;
   out.clear();
   for (std::size_t i = 0; i < from.offset.size(); ++i) {
-    if (!(margin_scratch_[i] <= keep)) continue;
+    if (!(scratch[i] <= keep)) continue;
     out.offset.push_back(from.offset[i]);
     out.distance.push_back(from.distance[i]);
     out.pierce.push_back(from.pierce[i]);
