@@ -116,7 +116,9 @@ namespace {
 // sticking reaction solves with: made once per solve, not once per sweep.
 struct DiagonalBlocks {
   PointList<Mat3> W;
-  PointList<Eigen::LDLT<Mat3>> stick;  // (an empty factorisation where the point's rule is not unilateral)
+  // (none where the point's rule is not unilateral: a default LDLT leaves its state unset, which a move of
+  // the list to the heap beyond kInlinePoints would read)
+  PointList<std::optional<Eigen::LDLT<Mat3>>> stick;
 };
 
 DiagonalBlocks diagonal_blocks(const ContactProblem& p, std::span<const PointCondition> conditions) {
@@ -124,15 +126,15 @@ DiagonalBlocks diagonal_blocks(const ContactProblem& p, std::span<const PointCon
   for (std::size_t i = 0; i < p.arms.size(); ++i) {
     d.W.push_back(delassus_block(p.mass, p.inverse_inertia, p.arms[i]));
     if (conditions[i].rule == PointRule::unilateral)
-      d.stick.emplace_back(d.W.back());
+      d.stick.emplace_back(std::in_place, d.W.back());
     else
-      d.stick.emplace_back();
+      d.stick.emplace_back(std::nullopt);
   }
   return d;
 }
 
-Vec3 local_reaction(const Mat3& W, const Eigen::LDLT<Mat3>& stick_solver, const Vec3& f, double mu,
-                    const PointCondition& c, Counts& counts) {
+Vec3 local_reaction(const Mat3& W, const std::optional<Eigen::LDLT<Mat3>>& stick_solver, const Vec3& f,
+                    double mu, const PointCondition& c, Counts& counts) {
   const Eigen::Matrix2d wtt = W.topLeftCorner<2, 2>();
   const Vec2 wtn = W.block<2, 1>(0, 2);
   const Vec2 ft = f.head<2>();
@@ -149,7 +151,7 @@ Vec3 local_reaction(const Mat3& W, const Eigen::LDLT<Mat3>& stick_solver, const 
   const double normal = c.normal;
   if (c.rule == PointRule::unilateral) {
     if (f.z() >= 0) return Vec3::Zero();
-    const Vec3 stick = -stick_solver.solve(f);
+    const Vec3 stick = -stick_solver->solve(f);
     if (stick.z() > 0 && stick.head<2>().norm() <= mu * stick.z()) return stick;
     // Sliding: P = (−μλŝ, λ) with u_n = 0 and ŝ the direction of u_t after.
     const std::optional<Vec3> sliding = sliding_reaction(W, f, mu, -1);
