@@ -2,6 +2,9 @@
 #include "rigid_impact.hpp"
 
 #include <algorithm>
+#include <array>
+#include <boost/numeric/odeint/stepper/runge_kutta_cash_karp54.hpp>
+#include <cmath>
 
 #include "../body/kinematics.hpp"
 #include "../events/events.hpp"
@@ -24,6 +27,35 @@ Vec2 resume_direction(const Eigen::Matrix2d& ktt, const Vec2& ktn, double mu) {
                         0.0, ktn.norm(), search, [&](double c) { return !(s(c).norm() > 1); }, monotone)
                         .hi;
   return s(hi).normalized();
+}
+
+// One Cash–Karp 5(4) step (Boost.Odeint) of d(P, work)/dp = (rate(P), u_n(P)) over dp from (P, work), in
+// place; returns the error estimate over its tolerance (above 1: reject). The impulse's error is measured
+// against tol::kImpactTolerance of the larger of the frictionless compression impulse and the impulse so far,
+// the work's against that times the approach speed.
+template <class Rate, class Velocity>
+double embedded_step(const Rate& rate, const Velocity& velocity, Vec3& P, double& work, double dp,
+                     double compression_scale, double speed) {
+  using State = std::array<double, 4>;
+  const auto system = [&](const State& y, State& dy, double) {
+    const Vec3 at(y[0], y[1], y[2]);
+    const Vec3 r = rate(at);
+    dy = {r.x(), r.y(), r.z(), velocity(at).z()};
+  };
+  boost::numeric::odeint::runge_kutta_cash_karp54<State> stepper;
+  const State in{P.x(), P.y(), P.z(), work};
+  State out, error;
+  stepper.do_step(system, in, 0.0, out, dp, error);
+  P = Vec3(out[0], out[1], out[2]);
+  work = out[3];
+  const double scale = tol::kImpactTolerance * std::max(compression_scale, P.norm());
+  return std::max(Vec3(error[0], error[1], error[2]).norm() / scale, std::abs(error[3]) / (scale * speed));
+}
+
+// The factor by which a step can change for its error to meet the tolerance (error: estimate over tolerance;
+// the 5(4) pair's local error grows as the step's fifth power), with the usual safety factor.
+double step_room(double error) {
+  return error > 0 ? tol::kImpactSafety * std::pow(error, -1.0 / tol::kImpactErrorOrder) : INFINITY;
 }
 
 Motion apply(double mass, const Mat3& inverse_inertia, const Vec3& r, const Motion& m, const Vec3& impulse) {
@@ -72,6 +104,7 @@ ImpactOutcome collide(double mass, const Mat3& inertia, const Vec3& r, const Mot
   bool resumed = false;
   Vec2 resume = Vec2::Zero();
   double cap = INFINITY;  // the longest step, halved where a step overshot the end of separation
+  double h = compression_scale / tol::kImpactFirstSteps;  // the error control's step
 
   for (int step = 0; !done; ++step) {
     if (step ==
@@ -114,22 +147,19 @@ ImpactOutcome collide(double mass, const Mat3& inertia, const Vec3& r, const Mot
       resumed = true;
     }
     const Vec2 s0 = slide > u_tiny ? Vec2(ut / slide) : resume;
-    auto rate = [&](const Vec3& at) {  // d(P, work)/dp
+    auto rate = [&](const Vec3& at) {  // dP/dp
+      // Slipping again from a stop, the point slides along the direction whose slip grows along itself:
+      // the rates are constant (a slip of round-off size has no direction of its own).
+      if (resumed) return Vec3(-mu * s0.x(), -mu * s0.y(), 1);
       const Vec2 t = velocity(at).head<2>();
       const Vec2 s = t.norm() > u_tiny ? Vec2(t.normalized()) : s0;
       return Vec3(-mu * s.x(), -mu * s.y(), 1);
     };
     const Vec3 dP = rate(P);
     const Vec3 du = K * dP;
-    // The step: the base step, and no further than the first event on the rates at its start (exact when
-    // the sliding direction does not turn).
-    double dp = compression_scale / tol::kImpactStepsPerImpulse;
-    // A slide that must stop before compression can end (a jam: friction drives the point into the wall, a
-    // grazing impact with large μ) needs an impulse up to u_t/(μ·λ_min(K_tt)), which may be a thousand times
-    // the compression impulse: after tol::kImpactFineSteps steps the step grows to
-    // 1/tol::kImpactStepsPerImpulse of that.
-    if (step >= tol::kImpactFineSteps) dp = std::max(dp, slip_scale / tol::kImpactStepsPerImpulse);
-    dp = std::min(dp, cap);
+    // The step: the error control's, and no further than the first event on the rates at its start (exact
+    // when the sliding direction does not turn: the rates are constant, no error, and the step reaches it).
+    double dp = std::min(h, cap);
     enum { none, stops, compressed, finished } event = none;
     const double slowing = s0.dot(du.head<2>());
     // Near a slip of zero the direction turns through a finite angle within an impulse of the order of the
@@ -137,9 +167,9 @@ ImpactOutcome collide(double mass, const Mat3& inertia, const Vec3& r, const Mot
     // settled on. A step that jumps to the stop its rates predict while the direction still turns, or that
     // steps over the swing, integrates it to first order only (before: errors of 1e-3 to 0.4 of the impulse
     // in 0.5 % of random impacts). So a step changes the slip by at most tol::kImpactSlipChangePerStep of
-    // itself and turns it by at most tol::kImpactTurnPerStep, and the jump to a stop waits for the turn over
-    // it to fall below tol::kImpactStopTurn (or for the stop to be within tol::kImpactStopReach of the
-    // impulse scale: a slip that hovers near zero, its direction circling, is stuck in fact).
+    // itself (its turn is the error control's), and the jump to a stop waits for the turn over it to fall
+    // below tol::kImpactStopTurn (or for the stop to be within tol::kImpactStopReach of the impulse scale: a
+    // slip that hovers near zero, its direction circling, is stuck in fact).
     bool may_stop = true;
     if (slide > u_tiny) {
       const double across = (du.head<2>() - slowing * s0).norm();
@@ -147,7 +177,6 @@ ImpactOutcome collide(double mass, const Mat3& inertia, const Vec3& r, const Mot
                  (across <= tol::kImpactStopTurn * -slowing ||
                   slide / -slowing <= tol::kImpactStopReach * std::max(compression_scale, slip_scale));
       if (!may_stop) dp = std::min(dp, tol::kImpactSlipChangePerStep * slide / du.head<2>().norm());
-      if (across > 0) dp = std::min(dp, tol::kImpactTurnPerStep * slide / across);
     }
     if (mu > 0 && slide > u_tiny && slowing < 0 && may_stop && slide / -slowing <= dp) {
       dp = slide / -slowing;
@@ -176,14 +205,36 @@ ImpactOutcome collide(double mass, const Mat3& inertia, const Vec3& r, const Mot
     }
     const Vec3 P_start = P;
     const double work_start = work;
-    // RK4 on (P, work) over dp.
-    auto f = [&](const Vec3& at) { return std::pair<Vec3, double>(rate(at), velocity(at).z()); };
-    const auto [k1, w1] = f(P);
-    const auto [k2, w2] = f(P + 0.5 * dp * k1);
-    const auto [k3, w3] = f(P + 0.5 * dp * k2);
-    const auto [k4, w4] = f(P + dp * k3);
-    P += dp / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
-    work += dp / 6 * (w1 + 2 * w2 + 2 * w3 + w4);
+    // One embedded Runge–Kutta step on (P, work) over dp; a step whose error estimate exceeds the tolerance
+    // is taken again, shorter (its event, predicted anew).
+    const auto take = [&](double d) {
+      P = P_start;
+      work = work_start;
+      return embedded_step(rate, velocity, P, work, d, compression_scale, u0.norm());
+    };
+    double error = take(dp);
+    // A step onto the end of compression or of restitution, predicted on the rates at its start, overshoots
+    // it where the sliding direction turns within the step: it is taken again, shortened by Newton's step on
+    // the normal velocity (the work), until it lands within the tolerance. (Short of it, the next step goes
+    // on.)
+    for (int k = 0; k < tol::kImpactEventIterations && error <= 1 && event != none && event != stops; ++k) {
+      const double over = event == compressed ? velocity(P).z() : work - target;
+      const double slope = event == compressed ? (K * rate(P)).z() : velocity(P).z();
+      const double allowed =
+          tol::kImpactTolerance * u0.norm() * (event == compressed ? 1 : compression_scale);
+      if (!(over > allowed && slope > 0 && over / slope < dp)) break;
+      dp -= over / slope;
+      error = take(dp);
+    }
+    if (error > 1) {
+      P = P_start;
+      work = work_start;
+      h = dp * std::max(tol::kImpactShrinkMin, step_room(error));
+      continue;
+    }
+    // The next step grows with the error's room, from the step the control allowed (a step cut short by an
+    // event or the slip's change does not shrink the next).
+    if (dp >= h) h = dp * std::min(tol::kImpactGrowMax, step_room(error));
     if (event == finished && velocity(P).z() < -u_tiny) {
       // The point's normal velocity fell through zero within the step (the direction turned): the step is
       // taken again, halved, so that restitution ends where separation ends, not beyond it.

@@ -210,10 +210,11 @@ TEST(FrictionalProperty, RandomTossesOfRandomConvexPolyhedraKeepEveryInvariant) 
 // Painlevé's impacts without collision keep their impulses in the cone (issue 48: the cone taken as μ instead
 // of μ times the normal impulse passed every other test). Two tosses of the sweep above whose impacts
 // without collision project an impulse onto the cone with a normal impulse below 1 (found by planting that
-// bug: these two failed among 2,000), checked by the definition; each must meet Painlevé's case, so the
-// test cannot pass by not reaching it.
+// bug: these two failed among 2,000; re-found so for the error-controlled impact law, whose trajectories
+// differ at round-off: 15 of 2,000 failed, these two among them), checked by the definition; each must meet
+// Painlevé's case, so the test cannot pass by not reaching it.
 TEST(FrictionalProperty, PainleveImpulsesOfTwoSweepTossesStayInTheCone) {
-  for (const std::uint64_t index : {328u, 1517u}) {
+  for (const std::uint64_t index : {308u, 1517u}) {
     const Toss t = make_toss(index);
     Totals totals;
     EXPECT_EQ(check_toss(t, totals), "") << t.describe;
