@@ -10,7 +10,6 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <thread>
 
 #include "cli_numbers.hpp"
 #include "commands.hpp"
@@ -173,12 +172,12 @@ std::unique_ptr<WorkRunner> make_runner() {
 int run_job(const PosesOptions& o, const CLI::App& sub, WorkRunner& runner) {
   const auto start = std::chrono::steady_clock::now();
   // Ranks that share a node share its cores.
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int cores = available_cores();
   int threads = o.threads > 0 ? o.threads : std::max(1, cores / runner.ranks_on_this_node());
   if (threads > cores) {  // TBB would run no more threads than cores anyway, and say so in its own words
     if (runner.is_root())
       std::cerr << "repose: warning: --threads " << threads << " is more than the " << cores
-                << " cores of this machine; using " << cores << "\n";
+                << " cores this process may use; using " << cores << "\n";
     threads = cores;
   }
   // Options are checked on every rank alike, but only the root reports a problem.
@@ -305,7 +304,8 @@ Command add_poses_command(CLI::App& app) {
   sub->add_option("--seed", o->seed, "Seed: drop i's orientation depends only on (seed, i) (default 1)")
       ->check(whole_number(0));
   sub->add_option("--threads", o->threads,
-                  "Worker threads per process (default 0: all cores, shared among the MPI ranks of a node)");
+                  "Worker threads per process (default 0: all the cores this process may use, shared among "
+                  "the MPI ranks of a node)");
   sub->add_option("--chunk", o->chunk,
                   "Drops per work item: the unit of load balancing and of checkpointing (default: about 64 "
                   "items per particle, 128 to 65536 drops each)")

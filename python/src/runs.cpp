@@ -187,8 +187,7 @@ std::string poses_run(const PyParticle& p, std::uint64_t n, std::uint64_t seed, 
     EnsembleOptions options = ensemble_options(study, {0, n}, threads);
     options.cancel = &cancel;
     study.tally = run_ensemble(*model, landscape, study.catalog, options);
-    study.threads =
-        threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    study.threads = threads > 0 ? threads : available_cores();
     return poses_json(study);
   });
 }

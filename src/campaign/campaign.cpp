@@ -11,11 +11,11 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <thread>
 
 #include "repose/error.hpp"
 #include "repose/model/particle.hpp"
 #include "repose/output/files.hpp"
+#include "repose/poses/ensemble.hpp"
 #include "repose/poses/landscape.hpp"
 
 namespace repose {
@@ -93,7 +93,7 @@ RootState prepare_root(const std::vector<CampaignParticle>& particles, const Cam
   state.cost_per_drop.resize(n);
   std::vector<std::exception_ptr> errors(n);
   std::mutex keeping;
-  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  tbb::task_arena arena(options.threads > 0 ? options.threads : available_cores());
   arena.execute([&] {
     tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
       try {
@@ -160,9 +160,7 @@ std::vector<PosesStudy> run_campaign(const std::function<std::vector<CampaignPar
       particles.push_back({p.at(0).get<std::string>(), p.at(1).get<std::string>(), mesh});
     }
 
-  const int threads = options.threads > 0
-                          ? options.threads
-                          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int threads = options.threads > 0 ? options.threads : available_cores();
   // Any rank: the model of a particle. The last one is kept, since items of one particle mostly follow each
   // other.
   std::uint32_t cached_index = state.kept_index;

@@ -1,9 +1,9 @@
 // Cutting a job into work items.
 #include <algorithm>
-#include <thread>
 
 #include "repose/campaign/campaign.hpp"
 #include "repose/error.hpp"
+#include "repose/poses/ensemble.hpp"
 
 namespace repose {
 
@@ -28,8 +28,7 @@ std::vector<DropRange> remaining_ranges(DropRange wanted, const std::vector<Drop
 }
 
 std::uint64_t auto_chunk(std::uint64_t drops, int threads) {
-  const auto t =
-      static_cast<std::uint64_t>(threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency()));
+  const auto t = static_cast<std::uint64_t>(threads > 0 ? threads : available_cores());
   constexpr std::uint64_t kItemsPerParticle = 64, kMaxChunk = 65536;
   std::uint64_t chunk = (drops + kItemsPerParticle - 1) / kItemsPerParticle;
   chunk = std::min(std::max(chunk, 128 * t), kMaxChunk);

@@ -1,6 +1,7 @@
 #include "repose/poses/ensemble.hpp"
 
 #include <tbb/blocked_range.h>
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -168,6 +169,10 @@ std::uint64_t EnsembleTally::drops() const {
   return n;
 }
 
+// std::thread::hardware_concurrency() counts the machine's cores, not those the process may use: an arena of
+// that many asked TBB for workers its affinity mask forbids, and TBB printed a warning on every run.
+int available_cores() { return std::max(1, tbb::info::default_concurrency()); }
+
 EnsembleTally run_ensemble(const Particle& particle, const RestLandscape& landscape,
                            const RestPoseCatalog& catalog, const EnsembleOptions& options) {
   if (options.drops.end < options.drops.begin)
@@ -183,8 +188,7 @@ EnsembleTally run_ensemble(const Particle& particle, const RestLandscape& landsc
   const auto run_drop = [&](std::uint64_t i) {
     return simulate_drop(particle, landscape, catalog, options, i);
   };
-  const int threads = options.threads > 0 ? options.threads : tbb::task_arena::automatic;
-  tbb::task_arena arena(threads);
+  tbb::task_arena arena(options.threads > 0 ? options.threads : available_cores());
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::uint64_t>(options.drops.begin, options.drops.end, kGrain),
                       [&](const tbb::blocked_range<std::uint64_t>& block) {

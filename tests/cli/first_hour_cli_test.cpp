@@ -3,6 +3,7 @@
 // forms (a 1 x 2 x 3 box: V = 6, area 22, L = (36/π)^(1/3)), never from the tool's own output.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sched.h>
 
 #include <cmath>
 #include <filesystem>
@@ -12,13 +13,19 @@
 #include <numbers>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "cli_test_support.hpp"
 #include "run_cli.hpp"
 
 namespace {
+
+// The CPUs this process may run on (its affinity mask), counted independently of the library's TBB.
+int allowed_cpus() {
+  cpu_set_t set;
+  if (sched_getaffinity(0, sizeof set, &set) != 0) return 1;
+  return CPU_COUNT(&set);
+}
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -312,12 +319,34 @@ TEST_F(FirstHourCli, NumbersInTheFormsTheHelpShows) {
                  "poses: --drops: must be a whole number >= 1, got '1.5' (see repose poses --help)");
   expect_refused(run_cli("poses " + kBox + " -n -3"),
                  "poses: --drops: must be a whole number >= 1, got '-3' (see repose poses --help)");
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int cores = allowed_cpus();
   const CliResult many = run_cli("poses " + kBox + " -n 20 --threads 1000 --json");
   EXPECT_EQ(many.exit_code, 0);
   EXPECT_EQ(many.err, "repose: warning: --threads 1000 is more than the " + std::to_string(cores) +
-                          " cores of this machine; using " + std::to_string(cores) + "\n");
+                          " cores this process may use; using " + std::to_string(cores) + "\n");
   EXPECT_EQ(parse_json(many)["timing"]["threads"], cores);
+}
+
+// On a share of the machine (a container, taskset, a batch job's CPUs) "all cores" are the ones the process
+// may run on: an arena sized by the machine's cores made TBB print a warning of its own on every run, and
+// every one-line error became three lines. The CLI inherits this test's affinity, narrowed to one CPU here.
+TEST_F(FirstHourCli, OnOneAllowedCoreARunPrintsNoWarning) {
+  cpu_set_t all, one;
+  ASSERT_EQ(sched_getaffinity(0, sizeof all, &all), 0);
+  CPU_ZERO(&one);
+  for (int c = 0; c < CPU_SETSIZE; ++c)
+    if (CPU_ISSET(c, &all)) {
+      CPU_SET(c, &one);
+      break;
+    }
+  ASSERT_EQ(sched_setaffinity(0, sizeof one, &one), 0);
+  const CliResult run = run_cli("poses " + kBox + " -n 20 --json");
+  const CliResult bad = run_cli("poses " + kBox + " -n 20 --chunk 0");
+  ASSERT_EQ(sched_setaffinity(0, sizeof all, &all), 0);
+  EXPECT_EQ(run.exit_code, 0);
+  EXPECT_EQ(run.err, "");
+  EXPECT_EQ(parse_json(run)["timing"]["threads"], 1);
+  expect_bad_input(bad, {"--chunk"});
 }
 
 // 10. Contradictory or ignored combinations refused; a CSV given to merge named as such; a solid's area; and

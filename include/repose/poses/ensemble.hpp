@@ -98,6 +98,10 @@ DropOutcome simulate_drop(const Particle& particle, const RestLandscape& landsca
                           const RestPoseCatalog& catalog, const EnsembleOptions& options,
                           std::uint64_t index);
 
+/// The cores this process may run on (its CPU affinity: a container's, taskset's or a batch job's share, as
+/// TBB counts them; at least 1): what "all cores" means for a thread count of 0.
+int available_cores();
+
 /// Runs drops [options.drops.begin, options.drops.end). Throws repose::Error for invalid options.
 EnsembleTally run_ensemble(const Particle& particle, const RestLandscape& landscape,
                            const RestPoseCatalog& catalog, const EnsembleOptions& options);
