@@ -62,11 +62,7 @@ void build_edges(const ConvexHull& hull, GaussMap& g, std::vector<std::vector<Sp
 void describe_edge(const ConvexHull& hull, Edge& e) {
   const Vec3& a = hull.vertices[static_cast<std::size_t>(e.a)];
   const Vec3& b = hull.vertices[static_cast<std::size_t>(e.b)];
-  const Vec3 dir = (b - a).normalized();
-  const Vec3 foot = a - a.dot(dir) * dir;  // nonzero: the centre of mass is strictly inside the hull
-  e.height = foot.norm();
-  e.top = foot / e.height;
-  e.along = dir.cross(e.top);
+  edge_arc(a, b, e.height, e.top, e.along);
   const HullFace& fab = hull.faces[static_cast<std::size_t>(e.face_ab)];
   const HullFace& fba = hull.faces[static_cast<std::size_t>(e.face_ba)];
   e.top_inside = e.along.dot(fab.normal) * e.along.dot(fba.normal) < 0;

@@ -16,6 +16,7 @@
 // minimum-norm subgradient); the crossing case is what makes basins depend on where an arc is reached.
 #pragma once
 
+#include <Eigen/Core>
 #include <memory>
 #include <vector>
 
@@ -24,16 +25,20 @@
 
 namespace repose::detail {
 
-struct GaussMap {
+// The map's numbers in the scalar T: double for the landscape; an automatic-differentiation type when the
+// design differentiates the basins (gauss_map_in below): the same structure, the geometry in T.
+template <class T>
+struct GaussMapT {
+  using V = Eigen::Matrix<T, 3, 1>;
   // One boundary arc of a vertex region, between corners i and i + 1.
   struct Arc {
     int edge = -1;
-    Vec3 normal = Vec3::Zero();  ///< unit (v − w)/|v − w|: the region is on its positive side
-    bool exit = false;  ///< the apex is on the region's side: rolling leaves the region through this arc
+    V normal = V::Zero();  ///< unit (v − w)/|v − w|: the region is on its positive side
+    bool exit = false;     ///< the apex is on the region's side: rolling leaves the region through this arc
   };
   struct Region {
-    Vec3 apex = Vec3::Zero();   ///< p_v (snapped onto a corner within 1e-10 rad, see build_region)
-    std::vector<Vec3> corners;  ///< face normals around the vertex
+    V apex = V::Zero();      ///< p_v (snapped onto a corner within 1e-10 rad, see build_region)
+    std::vector<V> corners;  ///< face normals around the vertex
     std::vector<int> faces;
     std::vector<Arc> arcs;
     double sense = 1;  ///< sign of normal·(c_i × c_{i+1}), the same for every arc (orients the lunes)
@@ -41,9 +46,9 @@ struct GaussMap {
   struct Edge {
     int a = -1, b = -1;              ///< hull vertices, a < b
     int face_ab = -1, face_ba = -1;  ///< the face whose loop runs a → b, and b → a
-    Vec3 top = Vec3::Zero();         ///< unit: the arc's maximum of h (centre of mass above the edge line)
-    Vec3 along = Vec3::Zero();       ///< unit tangent of the arc's great circle at `top`
-    double height = 0;               ///< distance from the centre of mass to the edge line
+    V top = V::Zero();               ///< unit: the arc's maximum of h (centre of mass above the edge line)
+    V along = V::Zero();             ///< unit tangent of the arc's great circle at `top`
+    T height = 0;                    ///< distance from the centre of mass to the edge line
     bool top_inside = false;         ///< `top` strictly inside the arc
     int low_face = -1;               ///< the lower end when `top` is not inside
     int cross_to = -1;  ///< the vertex whose region rolling crosses into; −1: it slides along the arc
@@ -52,16 +57,33 @@ struct GaussMap {
   // Where a face's normal rolls: its own rest if stable, else where tipping over takes it.
   struct FaceRoute {
     int reach = -1;  ///< the stable face, or the first balance face, that tipping leads to (itself if either)
-    bool balance = false;          ///< tipping from this face ends on an unstable balance (see above)
-    Vec3 unstable = Vec3::Zero();  ///< balance: the arc's unit tangent at its top (h descends both ways)
-    int side[2] = {-1, -1};        ///< balance: the face it slides to for u·d ≤ 0 ([0]) and u·d > 0 ([1])
+    bool balance = false;    ///< tipping from this face ends on an unstable balance (see above)
+    V unstable = V::Zero();  ///< balance: the arc's unit tangent at its top (h descends both ways)
+    int side[2] = {-1, -1};  ///< balance: the face it slides to for u·d ≤ 0 ([0]) and u·d > 0 ([1])
+    int edge = -1;           ///< balance: the edge whose arc it is (unstable is its `along`)
   };
   std::vector<Region> regions;  // per hull vertex
   std::vector<Edge> edges;
-  std::vector<Vec3> face_normals;
+  std::vector<V> face_normals;
   std::vector<FaceRoute> routes;  // per hull face
-  double balance_tol = 0;         // 1e-12·L: lever arm (length) within which an arc's top counts as reached
+  T balance_tol = 0;              // 1e-12·L: lever arm (length) within which an arc's top counts as reached
 };
+
+// An edge (a, b)'s arc geometry from its end vertices (body frame, centre of mass at the origin), in any
+// scalar: the distance from the centre of mass to the edge line, the arc's top (the unit direction of that
+// foot) and the tangent of its great circle there.
+template <class T>
+void edge_arc(const Eigen::Matrix<T, 3, 1>& a, const Eigen::Matrix<T, 3, 1>& b, T& height,
+              Eigen::Matrix<T, 3, 1>& top, Eigen::Matrix<T, 3, 1>& along) {
+  const Eigen::Matrix<T, 3, 1> dir = (b - a).normalized();
+  const Eigen::Matrix<T, 3, 1> foot = a - a.dot(dir) * dir;  // nonzero: the centre of mass is inside the hull
+  height = foot.norm();
+  top = foot / height;
+  along = dir.cross(top);
+}
+
+// The landscape's map (a type of its own: landscape.hpp declares it).
+struct GaussMap : GaussMapT<double> {};
 
 // The Gauss map of `hull` (body frame, centre of mass at the origin) with its edges described and its regions
 // built; `length` (L) scales the balance tolerance. Routes are left empty (landscape.cpp resolves them).

@@ -123,6 +123,7 @@ void resolve_routes(const Particle& particle, GaussMap& g, ArcPartitions& arcs) 
       route.unstable = end.unstable;
       route.side[0] = end.side[0];
       route.side[1] = end.side[1];
+      route.edge = end.edge;
     }
     for (int y : path)
       g.routes[static_cast<std::size_t>(y)].reach = g.routes[static_cast<std::size_t>(x)].reach;

@@ -64,7 +64,7 @@ RollEnd roll(const GaussMap& g, int v, Vec3 d) {
         const double side = e.along.dot(*x);
         if (std::abs(side) * e.height > g.balance_tol) return {slide_end(g, e, side)};
       }
-      return {-1, e.along, {slide_end(g, e, -1), slide_end(g, e, 1)}};
+      return {-1, e.along, {slide_end(g, e, -1), slide_end(g, e, 1)}, exit.edge};
     }
     v = e.cross_to;
     d = exit.point;

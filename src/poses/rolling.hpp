@@ -35,6 +35,7 @@ struct RollEnd {
   int face = -1;                 ///< the face normal reached; −1 at a balance
   Vec3 unstable = Vec3::Zero();  ///< balance: the arc's unit tangent at its top
   int side[2] = {-1, -1};        ///< balance: the face the arc slides to on the side u·d ≤ 0 / u·d > 0
+  int edge = -1;                 ///< balance: the edge whose arc it is
 };
 // From direction d in (or on the boundary of) vertex v's region, rolls region by region until the arc motion
 // ends (rolling.cpp says how corners and balances are decided).
