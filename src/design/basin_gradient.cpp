@@ -4,6 +4,7 @@
 // areas.
 #include "repose/design/basin_gradient.hpp"
 
+#include <algorithm>
 #include <numbers>
 #include <unsupported/Eigen/AutoDiff>
 

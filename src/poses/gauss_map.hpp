@@ -26,7 +26,7 @@
 namespace repose::detail {
 
 // The map's numbers in the scalar T: double for the landscape; an automatic-differentiation type when the
-// design differentiates the basins (gauss_map_in below): the same structure, the geometry in T.
+// design differentiates the basins (src/design/basin_gradient.cpp): the same structure, the geometry in T.
 template <class T>
 struct GaussMapT {
   using V = Eigen::Matrix<T, 3, 1>;
