@@ -9,7 +9,7 @@ set -euo pipefail
 declare -A group=(
   # Build and run the library and the `repose` tool (CGAL: --repair, header-only with GMP and MPFR).
   [core]="g++ cmake ninja-build pkg-config libeigen3-dev libboost-dev libcli11-dev nlohmann-json3-dev
-          libqhull-dev libtbb-dev librandom123-dev libcgal-dev"
+          libqhull-dev libtbb-dev librandom123-dev libcgal-dev libadolc-dev"
   # The Python package `repose` (pybind11 extension, NumPy arrays) in Debian's python3.
   [python]="python3 python3-dev pybind11-dev python3-numpy"
   # The figures and comparison table of `repose paper`, and the plotting scripts. python3-munkres meets
