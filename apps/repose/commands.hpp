@@ -17,5 +17,6 @@ Command add_settle_command(CLI::App& app);
 Command add_paper_command(CLI::App& app);
 Command add_poses_command(CLI::App& app);
 Command add_merge_command(CLI::App& app);
+Command add_design_command(CLI::App& app);
 
 }  // namespace repose::cli

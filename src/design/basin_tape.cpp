@@ -11,6 +11,7 @@
 #include "adolc_eigen.hpp"
 #include "map_replay.hpp"
 #include "repose/error.hpp"
+#include "solid_centroid.hpp"
 
 namespace repose::detail {
 
@@ -25,26 +26,6 @@ std::mutex tape_mutex;
 // Buffer sizes per hull vertex (elements). Measured: ~7,500 operations per vertex on 1,000-vertex hulls
 // (an ellipsoid, an irregular grain); the buffers only take memory as they fill.
 constexpr std::size_t kPerVertex = 65536;
-
-// The solid convex hull's centroid: each face's fan of tetrahedra with the first vertex as apex.
-template <class T>
-Eigen::Matrix<T, 3, 1> centroid(const std::vector<Eigen::Matrix<T, 3, 1>>& x, const ConvexHull& hull) {
-  using V = Eigen::Matrix<T, 3, 1>;
-  const V& o = x.front();
-  T volume(0.0);
-  V moment = V::Zero();
-  for (const HullFace& f : hull.faces) {
-    const V& a = x[static_cast<std::size_t>(f.loop[0])];
-    for (std::size_t k = 1; k + 1 < f.loop.size(); ++k) {
-      const V& b = x[static_cast<std::size_t>(f.loop[k])];
-      const V& c = x[static_cast<std::size_t>(f.loop[k + 1])];
-      const T v = (a - o).dot(V((b - o).cross(c - o)));
-      volume += v;
-      moment += v * V(o + a + b + c);
-    }
-  }
-  return moment / (T(4.0) * volume);
-}
 
 }  // namespace
 
@@ -70,12 +51,12 @@ BasinTape::BasinTape(const Particle& particle, const RestLandscape& landscape, M
     // The offset's value: the centroid's, negated (follows_shape), or zero (the centre of mass is the
     // origin).
     const Vec3 offset =
-        mass == MassModel::follows_shape ? Vec3(-centroid<double>(hull.vertices, hull)) : Vec3::Zero();
+        mass == MassModel::follows_shape ? Vec3(-solid_centroid<double>(hull.vertices, hull)) : Vec3::Zero();
     for (int k = 0; k < 3; ++k) {
       c[k] <<= offset[k];
       point_.push_back(offset[k]);
     }
-    if (mass == MassModel::follows_shape) c += centroid<adouble>(x, hull);
+    if (mass == MassModel::follows_shape) c += solid_centroid<adouble>(x, hull);
     for (std::size_t i = 0; i < n; ++i) body[i] = x[i] - c;
     const GaussMapT<adouble> m = replay_map<adouble>(*g, hull, body);
     ArcPartitionsT<adouble> arcs(m);

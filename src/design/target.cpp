@@ -61,8 +61,10 @@ DesignTarget parse_design_target(std::string_view json_text, const std::string& 
         fail(source, "outcome " + std::to_string(i + 1) + ": a pair [[nx, ny, nz], p] was expected");
       target.outcomes.push_back({read_normal(j[i][0], source, i), read_probability(j[i][1], source, i), {}});
     }
-  } else if (j.is_object() && j.contains("outcomes") && j["outcomes"].is_array()) {
-    const auto& list = j["outcomes"];
+  } else if (j.is_object() && ((j.contains("outcomes") && j["outcomes"].is_array()) ||
+                               (j.contains("pairs") && j["pairs"].is_array()))) {
+    // "pairs" is convex_dice's own file (its examples' final_normal_probs.json), read as it is.
+    const auto& list = j.contains("outcomes") ? j["outcomes"] : j["pairs"];
     for (std::size_t i = 0; i < list.size(); ++i) {
       if (!list[i].is_object() || !list[i].contains("normal") || !list[i].contains("probability"))
         fail(source, "outcome " + std::to_string(i + 1) + ": \"normal\" and \"probability\" are needed");
@@ -76,7 +78,8 @@ DesignTarget parse_design_target(std::string_view json_text, const std::string& 
       target.outcomes.push_back({read_normal(list[i], source, i), 0, {}});
     for (auto& o : target.outcomes) o.probability = 1.0 / static_cast<double>(target.outcomes.size());
   } else {
-    fail(source, "expected [[normal, p], ...], {\"outcomes\": [...]} or {\"fair\": [normals]}");
+    fail(source,
+         "expected [[normal, p], ...], {\"outcomes\": [...]}, {\"pairs\": [...]} or {\"fair\": [normals]}");
   }
   if (target.outcomes.empty()) fail(source, "no outcomes");
   double sum = 0;

@@ -155,34 +155,11 @@ TriangleMesh read_mesh_from_memory(const std::string& bytes, const std::string& 
   return parse_mesh(name, bytes, format);
 }
 
-void write_stl(const TriangleMesh& mesh, const std::string& path) {
-  const auto n_vertices = mesh.vertices.size();
-  if (mesh.triangles.size() > std::numeric_limits<std::uint32_t>::max()) {
-    fail(path, "cannot write: too many triangles for STL");
-  }
-  std::string out = "binary STL written by repose";
-  out.resize(80, ' ');
-  append_le32(out, static_cast<std::uint32_t>(mesh.triangles.size()));
-  out.reserve(84 + 50 * mesh.triangles.size());
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const Triangle& tri = mesh.triangles[t];
-    for (const std::int32_t i : tri) {
-      if (i < 0 || static_cast<std::size_t>(i) >= n_vertices) {
-        fail(path, "cannot write: in triangle " + str(t) + ", vertex index " + std::to_string(i) +
-                       " does not exist (" + str(n_vertices) + " vertices)");
-      }
-    }
-    const Vec3& a = mesh.vertices[tri[0]];
-    const Vec3 normal = (mesh.vertices[tri[1]] - a).cross(mesh.vertices[tri[2]] - a).normalized();
-    for (int k = 0; k < 3; ++k) append_float(out, std::isfinite(normal[k]) ? normal[k] : 0.0);
-    for (const std::int32_t i : tri) {
-      for (int k = 0; k < 3; ++k) append_float(out, mesh.vertices[i][k]);
-    }
-    out.append(2, '\0');  // attribute byte count
-  }
+namespace {
 
-  // Write a sibling temporary and rename it over `path`, so readers never see a partial file. O_EXCL with
-  // a random suffix avoids clobbering a concurrent writer's temporary; mode 0666 lets the umask decide.
+// Writes `out` to a sibling temporary and renames it over `path`, so readers never see a partial file. O_EXCL
+// with a random suffix avoids clobbering a concurrent writer's temporary; mode 0666 lets the umask decide.
+void write_atomically(const std::string& out, const std::string& path) {
   std::random_device entropy;
   std::string tmp;
   int fd = -1;
@@ -210,6 +187,56 @@ void write_stl(const TriangleMesh& mesh, const std::string& path) {
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
   if (ec) give_up(ec.message());
+}
+
+// Every triangle's indices name vertices of the mesh.
+void check_indices(const TriangleMesh& mesh, const std::string& path) {
+  const auto n_vertices = mesh.vertices.size();
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (const std::int32_t i : mesh.triangles[t])
+      if (i < 0 || static_cast<std::size_t>(i) >= n_vertices)
+        fail(path, "cannot write: in triangle " + str(t) + ", vertex index " + std::to_string(i) +
+                       " does not exist (" + str(n_vertices) + " vertices)");
+}
+
+}  // namespace
+
+void write_stl(const TriangleMesh& mesh, const std::string& path) {
+  check_indices(mesh, path);
+  if (mesh.triangles.size() > std::numeric_limits<std::uint32_t>::max()) {
+    fail(path, "cannot write: too many triangles for STL");
+  }
+  std::string out = "binary STL written by repose";
+  out.resize(80, ' ');
+  append_le32(out, static_cast<std::uint32_t>(mesh.triangles.size()));
+  out.reserve(84 + 50 * mesh.triangles.size());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const Triangle& tri = mesh.triangles[t];
+    const Vec3& a = mesh.vertices[tri[0]];
+    const Vec3 normal = (mesh.vertices[tri[1]] - a).cross(mesh.vertices[tri[2]] - a).normalized();
+    for (int k = 0; k < 3; ++k) append_float(out, std::isfinite(normal[k]) ? normal[k] : 0.0);
+    for (const std::int32_t i : tri) {
+      for (int k = 0; k < 3; ++k) append_float(out, mesh.vertices[i][k]);
+    }
+    out.append(2, '\0');  // attribute byte count
+  }
+  write_atomically(out, path);
+}
+
+void write_obj(const TriangleMesh& mesh, const std::string& path) {
+  check_indices(mesh, path);
+  std::string out = "# OBJ written by repose\n";
+  char line[128];
+  for (const Vec3& v : mesh.vertices) {
+    // %.17g: every double read back to the same bits.
+    std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", v[0], v[1], v[2]);
+    out += line;
+  }
+  for (const Triangle& t : mesh.triangles) {
+    std::snprintf(line, sizeof line, "f %d %d %d\n", t[0] + 1, t[1] + 1, t[2] + 1);
+    out += line;
+  }
+  write_atomically(out, path);
 }
 
 }  // namespace repose

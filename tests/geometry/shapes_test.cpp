@@ -26,7 +26,7 @@
 namespace repose {
 namespace {
 
-constexpr double kTol = 1e-12;
+constexpr double kShapeTol = 1e-12;
 
 double signed_volume_of(const TriangleMesh& mesh) {
   double six_v = 0;
@@ -107,11 +107,11 @@ TEST(Shapes, AllShapesAreClosedOutwardAndCentred) {
     EXPECT_TRUE(report.warnings.empty()) << spec;
     EXPECT_EQ(validated.vertices, mesh.vertices) << spec;
     EXPECT_EQ(validated.triangles, mesh.triangles) << spec;
-    EXPECT_NEAR(signed_volume(mesh), signed_volume_of(mesh), kTol * signed_volume_of(mesh)) << spec;
+    EXPECT_NEAR(signed_volume(mesh), signed_volume_of(mesh), kShapeTol * signed_volume_of(mesh)) << spec;
     const MassProperties mp = compute_mass_properties(mesh, 1.0);
     const double size = bounding_box(mesh.vertices).size().maxCoeff();
-    EXPECT_LT(mp.center_of_mass.norm(), kTol * size) << spec;
-    EXPECT_NEAR(mp.volume, signed_volume_of(mesh), kTol * mp.volume) << spec;
+    EXPECT_LT(mp.center_of_mass.norm(), kShapeTol * size) << spec;
+    EXPECT_NEAR(mp.volume, signed_volume_of(mesh), kShapeTol * mp.volume) << spec;
   }
 }
 
@@ -122,7 +122,7 @@ TEST(Shapes, Box) {
   const Aabb box = bounding_box(mesh.vertices);
   EXPECT_EQ(box.min, Vec3(-0.5, -1, -1.5));
   EXPECT_EQ(box.max, Vec3(0.5, 1, 1.5));
-  EXPECT_NEAR(signed_volume_of(mesh), 6.0, kTol);
+  EXPECT_NEAR(signed_volume_of(mesh), 6.0, kShapeTol);
 }
 
 TEST(Shapes, Cylinder) {
@@ -132,7 +132,7 @@ TEST(Shapes, Cylinder) {
   EXPECT_EQ(mesh.vertices[0], Vec3(0.5, 0, -1));  // rim vertex 0 on +x
   for (const Vec3& p : mesh.vertices) {
     const double rho = std::hypot(p.x(), p.y());
-    EXPECT_TRUE(rho < kTol || std::abs(rho - 0.5) < kTol);
+    EXPECT_TRUE(rho < kShapeTol || std::abs(rho - 0.5) < kShapeTol);
     EXPECT_EQ(std::abs(p.z()), 1.0);
   }
   EXPECT_EQ(make_shape("cylinder:r=1,h=1,n=7").triangles.size(), 28u);
@@ -143,10 +143,10 @@ TEST(Shapes, Ellipsoid) {
   EXPECT_EQ(mesh.triangles.size(), 2000u);         // 20·F² with F = 10
   EXPECT_EQ(mesh.vertices.size(), 10u * 100 + 2);  // 10·F² + 2
   for (const Vec3& p : mesh.vertices) {
-    EXPECT_NEAR(std::pow(p.x() / 2, 2) + std::pow(p.y() / 1, 2) + std::pow(p.z() / 0.5, 2), 1.0, kTol);
+    EXPECT_NEAR(std::pow(p.x() / 2, 2) + std::pow(p.y() / 1, 2) + std::pow(p.z() / 0.5, 2), 1.0, kShapeTol);
   }
   const Aabb box = bounding_box(mesh.vertices);
-  EXPECT_LT((box.max + box.min).norm(), kTol);
+  EXPECT_LT((box.max + box.min).norm(), kShapeTol);
   EXPECT_EQ(make_shape("ellipsoid:a=1,b=1,c=1,n=1").vertices.size(), 12u);  // the icosahedron itself
 }
 
@@ -157,7 +157,7 @@ TEST(Shapes, Tetrahedron) {
   EXPECT_EQ(mesh.triangles.size(), 4u);
   for (std::size_t i = 0; i < 4; ++i) {
     for (std::size_t j = i + 1; j < 4; ++j) {
-      EXPECT_NEAR((mesh.vertices[i] - mesh.vertices[j]).norm(), edge, kTol);
+      EXPECT_NEAR((mesh.vertices[i] - mesh.vertices[j]).norm(), edge, kShapeTol);
     }
   }
   const double bottom = -edge * std::sqrt(2.0 / 3.0) / 4;
@@ -165,9 +165,10 @@ TEST(Shapes, Tetrahedron) {
   const double azimuth[3] = {90, 210, 330};
   for (std::size_t i = 0; i < 3; ++i) {
     const double a = azimuth[i] * std::numbers::pi / 180;
-    EXPECT_LT((mesh.vertices[i] - Vec3(radius * std::cos(a), radius * std::sin(a), bottom)).norm(), kTol);
+    EXPECT_LT((mesh.vertices[i] - Vec3(radius * std::cos(a), radius * std::sin(a), bottom)).norm(),
+              kShapeTol);
   }
-  EXPECT_LT((mesh.vertices[3] - Vec3(0, 0, 3 * edge * std::sqrt(2.0 / 3.0) / 4)).norm(), kTol);
+  EXPECT_LT((mesh.vertices[3] - Vec3(0, 0, 3 * edge * std::sqrt(2.0 / 3.0) / 4)).norm(), kShapeTol);
 }
 
 std::uint64_t fnv1a(const TriangleMesh& mesh) {
@@ -203,9 +204,9 @@ TEST(Shapes, IrregularIsNonConvexElongatedAndSized) {
     const TriangleMesh mesh = make_shape(spec);
     EXPECT_EQ(mesh.triangles.size(), 320u);  // default F = 4
     const Vec3 extent = bounding_box(mesh.vertices).size();
-    EXPECT_NEAR(extent.maxCoeff(), size, kTol * size);
+    EXPECT_NEAR(extent.maxCoeff(), size, kShapeTol * size);
     const MassProperties mp = compute_mass_properties(mesh, 1.0);
-    EXPECT_LT(mp.center_of_mass.norm(), kTol * size);
+    EXPECT_LT(mp.center_of_mass.norm(), kShapeTol * size);
     // Elongated: the principal moments differ markedly (a shape property, not a tolerance; measured ≥ 1.67).
     EXPECT_GT(mp.principal_moments[2] / mp.principal_moments[0], 1.3);
     // Non-convex: the hull encloses noticeably more than the particle (measured ≥ 1.21).

@@ -28,6 +28,7 @@ struct DesignTarget {
 /// Reads a target from JSON text; `source` names it in errors (a file name). Accepted forms:
 ///   [[[nx, ny, nz], p], ...]                                  convex_dice's normal → probability pairs
 ///   {"outcomes": [{"normal": [nx, ny, nz], "probability": p}, ...]}
+///   {"pairs": [...], ...}                                     the same list: convex_dice's JSON files
 ///   {"fair": [[nx, ny, nz], ...]}                             the same probability for each normal
 /// Normals need not be unit (they are normalised) but must be finite and nonzero, and no two may be within
 /// 1e-6 rad of each other; probabilities must be finite, in [0, 1] and sum to 1 within 1e-6. Throws

@@ -26,4 +26,8 @@ TriangleMesh read_mesh_from_memory(const std::string& bytes, const std::string& 
 /// Writes a binary STL file atomically (temporary file + rename). Throws repose::Error on failure.
 void write_stl(const TriangleMesh& mesh, const std::string& path);
 
+/// Writes an OBJ file (vertices to 17 significant digits, triangles) atomically. Throws repose::Error on
+/// failure.
+void write_obj(const TriangleMesh& mesh, const std::string& path);
+
 }  // namespace repose

@@ -1,0 +1,175 @@
+// repose design MESH|SHAPE --target FILE: the centre of mass and/or the convex hull that give a target
+// probability per outcome under quasi-static rolling (docs/inverse-design.md).
+#include <cmath>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <string>
+
+#include "commands.hpp"
+#include "format.hpp"
+#include "mesh_options.hpp"
+#include "repose/design/design.hpp"
+#include "repose/design/target.hpp"
+#include "repose/io/mesh_io.hpp"
+#include "repose/model/particle.hpp"
+#include "repose/output/files.hpp"
+
+namespace repose::cli {
+
+namespace {
+
+struct DesignCliOptions {
+  std::string source;
+  std::string target;
+  std::string vary = "vertices+center-of-mass";
+  std::string mass = "follows";
+  double outcome_angle = 30;  // degrees
+  DesignOptions design;
+  MeshCliOptions mesh;
+  std::string out_dir;
+  bool json = false;
+};
+
+nlohmann::json design_json(const DesignCliOptions& o, const DesignTarget& target, const DesignResult& r) {
+  nlohmann::json j;
+  j["source"] = o.source;
+  j["target_file"] = o.target;
+  j["options"] = {{"vary", o.vary},
+                  {"mass", o.mass},
+                  {"outcome_angle_degrees", o.outcome_angle},
+                  {"com_margin", o.design.com_margin},
+                  {"max_move", o.design.max_vertex_move},
+                  {"min_edge", o.design.min_edge},
+                  {"min_face", o.design.min_face_area},
+                  {"tolerance", o.design.tolerance},
+                  {"iterations", o.design.max_iterations}};
+  nlohmann::json outcomes = nlohmann::json::array();
+  for (std::size_t k = 0; k < target.outcomes.size(); ++k)
+    outcomes.push_back({{"normal", to_json(target.outcomes[k].normal)},
+                        {"target", r.target[k]},
+                        {"start", r.start[k]},
+                        {"achieved", r.achieved[k]}});
+  j["outcomes"] = outcomes;
+  j["unassigned"] = {{"target", 0.0}, {"start", r.start.back()}, {"achieved", r.achieved.back()}};
+  j["stop"] = r.stop;
+  j["reached"] = r.reached();
+  j["max_error"] = r.max_error();
+  j["center_of_mass"] = to_json(r.center_of_mass);
+  j["centroid"] = to_json(r.centroid);
+  // Where the centre of mass sits relative to a uniform part's: what an insert or cavity must move it by.
+  j["center_of_mass_offset"] = to_json(Vec3(r.center_of_mass - r.centroid));
+  j["characteristic_length"] = r.length;
+  j["hull"] = {{"vertices", r.vertices.size()}, {"triangles", r.mesh.triangles.size()}};
+  nlohmann::json history = nlohmann::json::array();
+  for (const DesignStep& s : r.history)
+    history.push_back({{"objective", s.objective},
+                       {"max_error", s.max_error},
+                       {"step", s.step},
+                       {"stable_faces", s.stable_faces},
+                       {"accepted", s.accepted},
+                       {"structure_changed", s.structure_changed},
+                       {"trials", s.trials},
+                       {"rejected",
+                        {{"rose", s.rose},
+                         {"unprintable", s.unprintable},
+                         {"com_outside", s.com_outside},
+                         {"degenerate", s.degenerate}}},
+                       {"kink_samples", s.kink_samples}});
+  j["history"] = history;
+  return j;
+}
+
+void print_design(const DesignCliOptions& o, const DesignTarget& target, const DesignResult& r) {
+  std::cout << "design of " << o.source << " for " << o.target << " (vary " << o.vary << ")\n";
+  std::cout << "outcome  normal                         target    start     achieved\n";
+  char line[160];
+  for (std::size_t k = 0; k < target.outcomes.size(); ++k) {
+    const Vec3& n = target.outcomes[k].normal;
+    std::snprintf(line, sizeof line, "%-8zu [%7.4f, %7.4f, %7.4f]   %.5f   %.5f   %.5f\n", k + 1, n[0], n[1],
+                  n[2], r.target[k], r.start[k], r.achieved[k]);
+    std::cout << line;
+  }
+  std::snprintf(line, sizeof line, "%-8s %-30s %.5f   %.5f   %.5f\n", "other", "(faces of no outcome)", 0.0,
+                r.start.back(), r.achieved.back());
+  std::cout << line;
+  std::cout
+      << (r.reached() ? "reached" : "NOT reached") << ": max |achieved - target| " << num(r.max_error())
+      << " after " << r.history.size() << " iterations ("
+      << (r.stop == "converged" ? "within --tolerance"
+          : r.stop == "stalled"
+              ? "stalled: no step within the bounds lowers the error; the best achievable from this start"
+              : "--iterations reached")
+      << ")\n";
+  std::cout << "centre of mass " << vec(r.center_of_mass) << "; a uniform solid's " << vec(r.centroid)
+            << " (offset " << num((r.center_of_mass - r.centroid).norm()) << ")\n";
+}
+
+}  // namespace
+
+Command add_design_command(CLI::App& app) {
+  auto opts = std::make_shared<DesignCliOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "design",
+      "Design the centre of mass and/or the convex hull for target rest probabilities (quasi-static)");
+  sub->add_option("particle", opts->source, "Mesh file or shape spec to start from, e.g. box:x=1,y=1,z=1")
+      ->required();
+  sub->add_option(
+         "--target", opts->target,
+         "JSON target: [[normal, p], ...] (convex_dice's pairs), {\"outcomes\": [{\"normal\": [...], "
+         "\"probability\": p}, ...]} or {\"fair\": [normals]}; normals in the mesh's frame")
+      ->required();
+  sub->add_option(
+      "--vary", opts->vary,
+      "What may change: center-of-mass, vertices, faces (planes: faces stay flat), or a shape and "
+      "center-of-mass joined by '+' (default vertices+center-of-mass)");
+  sub->add_option("--mass", opts->mass,
+                  "As the shape changes the centre of mass follows it (follows: a uniform part, or an insert "
+                  "moving with it; default) or stays fixed in the body (fixed)")
+      ->check(CLI::IsMember({"follows", "fixed"}));
+  sub->add_option("--outcome-angle", opts->outcome_angle,
+                  "Degrees: a hull face belongs to the nearest target normal within this (default 30)");
+  sub->add_option("--com-margin", opts->design.com_margin,
+                  "x L: the centre of mass stays this far inside every face (default 0.05)");
+  sub->add_option("--max-move", opts->design.max_vertex_move,
+                  "x L: no vertex (faces: no face plane) moves further from where it started (default 0.15)");
+  sub->add_option("--min-edge", opts->design.min_edge,
+                  "x L: no hull edge gets shorter, unless it started shorter (default 0.02)");
+  sub->add_option("--min-face", opts->design.min_face_area,
+                  "x L^2: no hull face gets smaller, unless it started smaller (default 0.001)");
+  sub->add_option("--tolerance", opts->design.tolerance,
+                  "Done when every outcome is within this of its target (default 1e-4)");
+  sub->add_option("--iterations", opts->design.max_iterations, "At most this many iterations (default 200)");
+  sub->add_option("--out", opts->out_dir,
+                  "Write design.obj, design.stl (the design's hull, the mesh's frame) and design.json here");
+  sub->add_flag("--json", opts->json, "Print design.json on stdout instead of the summary");
+  add_mesh_options(*sub, opts->mesh);
+  return {sub, [opts]() {
+            DesignCliOptions& o = *opts;
+            o.design.freedom = parse_design_freedom(o.vary);
+            o.design.mass = o.mass == "fixed" ? MassModel::fixed : MassModel::follows_shape;
+            if (!(o.outcome_angle > 0 && o.outcome_angle <= 180))
+              throw Error("--outcome-angle " + num(o.outcome_angle) + ": must be in (0, 180] degrees");
+            o.design.outcome_angle = o.outcome_angle * std::numbers::pi / 180;
+            const std::string text = read_text_file(o.target, std::size_t{1} << 24);
+            const DesignTarget target = parse_design_target(text, o.target);
+            if (!o.out_dir.empty()) ensure_output_directory(o.out_dir);
+            const Particle start = load_particle(o.source, 1.0, o.mesh.resolve(false));
+            const DesignResult r = design_quasi_static(start, target, o.design);
+            const nlohmann::json j = design_json(o, target, r);
+            if (!o.out_dir.empty()) {
+              write_obj(r.mesh, o.out_dir + "/design.obj");
+              write_stl(r.mesh, o.out_dir + "/design.stl");
+              write_file_atomically(o.out_dir + "/design.json", j.dump(2) + "\n");
+            }
+            if (o.json) {
+              std::cout << j.dump(2) << "\n";
+            } else {
+              print_design(o, target, r);
+              if (!o.out_dir.empty()) std::cout << "wrote " << o.out_dir << "/design.{obj,stl,json}\n";
+            }
+            return 0;
+          }};
+}
+
+}  // namespace repose::cli

@@ -1,0 +1,85 @@
+// Inverse design (issue 50, `repose design`): the centre of mass and/or the convex hull's vertices that give
+// a target probability per outcome under quasi-static rolling (docs/inverse-design.md).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "repose/design/basin_gradient.hpp"
+#include "repose/design/target.hpp"
+#include "repose/geometry/types.hpp"
+#include "repose/model/particle.hpp"
+
+namespace repose {
+
+/// How the shape may change: not at all, vertex by vertex (a scanned grain's triangulated hull: its faces
+/// then fold), or plane by plane (a die's flat faces stay flat; its vertices are the planes' intersections).
+enum class ShapeFreedom { none, vertices, faces };
+
+/// What the design may change.
+struct DesignFreedom {
+  bool center_of_mass = true;
+  ShapeFreedom shape = ShapeFreedom::vertices;
+};
+
+/// A '+'-separated list of "center-of-mass" and one of "vertices" or "faces" (e.g. "faces+center-of-mass");
+/// throws repose::Error naming the accepted values otherwise.
+DesignFreedom parse_design_freedom(const std::string& text);
+
+struct DesignOptions {
+  DesignFreedom freedom;
+  /// With moving vertices: the centre of mass follows the solid's centroid (plus its offset, an insert that
+  /// moves with the part) or stays fixed in the body frame.
+  MassModel mass = MassModel::follows_shape;
+  double outcome_angle = 0.5;     ///< rad: a hull face belongs to the nearest outcome normal within this
+  double com_margin = 0.05;       ///< × L: the centre of mass stays at least this far inside every face
+  double max_vertex_move = 0.15;  ///< × L: no vertex (faces: no plane's foot from the start's centre of mass)
+                                  ///< moves further than this from where it started
+  double min_edge = 0.02;       ///< × L: no hull edge gets shorter (unless it started shorter)
+  double min_face_area = 1e-3;  ///< × L²: no hull face gets smaller (unless it started smaller)
+  double tolerance = 1e-4;      ///< done when every outcome is within this of its target
+  int max_iterations = 200;     ///< Levenberg–Marquardt iterations, each one exact gradient
+  int max_trials = 16;          ///< trial steps per iteration before it stalls
+};
+
+/// One iteration of the optimiser.
+struct DesignStep {
+  double objective = 0;  ///< Σ (achieved − target)² over the outcomes and the unassigned faces
+  double max_error = 0;  ///< max |achieved − target|
+  double step = 0;       ///< largest vertex or centre-of-mass move of the accepted step (× L)
+  int stable_faces = 0;  ///< of the hull after the step
+  int trials = 0;        ///< trial steps tried; the rejected ones by why:
+  int rose = 0;          ///<   the objective did not fall (a smaller step is tried next)
+  int unprintable = 0;   ///<   an edge or a face below its minimum
+  int com_outside = 0;   ///<   the centre of mass could not be kept com_margin inside the hull
+  int degenerate = 0;    ///<   the points' hull degenerated
+  int kink_samples = 0;  ///< nearby points whose gradient was tried (no step from the point itself descended)
+  bool structure_changed = false;  ///< the set of stable faces changed (a topology change of the basins)
+  bool accepted = false;  ///< a trial step lowered the objective (the last iteration of a stalled design: no)
+};
+
+struct DesignResult {
+  std::vector<Vec3> vertices;  ///< the design's hull vertices, the input mesh's frame
+  TriangleMesh mesh;           ///< the design's hull, triangulated, outward-wound, the input mesh's frame
+  Vec3 center_of_mass;         ///< the input mesh's frame
+  Vec3 centroid;               ///< the design solid's centroid (where a uniform part has its centre of mass)
+  double length = 0;           ///< L of the design
+  std::vector<double> target;  ///< per outcome, then the unassigned faces (0)
+  std::vector<double> start;   ///< the same, achieved by the starting body
+  std::vector<double> achieved;  ///< the same, by the design (exact quasi-static basins)
+  std::vector<DesignStep> history;
+  std::string stop;  ///< "converged", "iterations" (max_iterations reached) or "stalled" (no trial step
+                     ///< lowered the objective within the bounds: the best achievable from here)
+  bool reached() const { return stop == "converged"; }
+  double max_error() const;
+};
+
+/// Designs from `start` (its hull and centre of mass) toward `target` (outcomes assigned afresh to the
+/// changing hull's faces every iteration). Levenberg–Marquardt on the outcomes' residuals with their exact
+/// Jacobian (basin_gradient.hpp); a step is kept only if the objective falls and every bound holds (the rule
+/// at topology changes: the current structure's gradient, the true objective to accept). Throws repose::Error
+/// for options out of range or a target normal that is no outcome of the starting hull.
+DesignResult design_quasi_static(const Particle& start, DesignTarget target,
+                                 const DesignOptions& options = {});
+
+}  // namespace repose
