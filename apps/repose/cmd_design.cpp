@@ -42,6 +42,7 @@ nlohmann::json design_json(const DesignCliOptions& o, const DesignTarget& target
                   {"max_move", o.design.max_vertex_move},
                   {"min_edge", o.design.min_edge},
                   {"min_face", o.design.min_face_area},
+                  {"smoothing", o.design.smoothing},
                   {"tolerance", o.design.tolerance},
                   {"iterations", o.design.max_iterations}};
   nlohmann::json outcomes = nlohmann::json::array();
@@ -137,6 +138,9 @@ Command add_design_command(CLI::App& app) {
                   "x L: no hull edge gets shorter, unless it started shorter (default 0.02)");
   sub->add_option("--min-face", opts->design.min_face_area,
                   "x L^2: no hull face gets smaller, unless it started smaller (default 0.001)");
+  sub->add_option("--smoothing", opts->design.smoothing,
+                  "x L: shape steps are smooth over about this distance (0: each vertex or face on its own; "
+                  "default 0.1)");
   sub->add_option("--tolerance", opts->design.tolerance,
                   "Done when every outcome is within this of its target (default 1e-4)");
   sub->add_option("--iterations", opts->design.max_iterations, "At most this many iterations (default 200)");

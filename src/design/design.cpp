@@ -4,8 +4,12 @@
 #include "repose/design/design.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <random>
@@ -50,8 +54,11 @@ namespace {
 
 constexpr int kComProjectionRounds = 32;  // rounds pushing the centre of mass inside the shrunk hull
 constexpr int kActivePasses = 4;          // re-solves of a step as vertices reach their move bound
-constexpr int kKinkSamples = 4;           // nearby points whose gradients are tried when no step descends
-constexpr double kKinkJitter = 1e-3;      // their distance, per variable (× L)
+constexpr int kKinkSamples = 6;           // nearby points whose gradients are sampled when no step descends
+constexpr int kKinkRounds = 3;            // sampling rounds, the radius shrinking tenfold each
+constexpr double kKinkJitter = 1e-3;      // the first round's radius, per variable (dimensionless: × L)
+constexpr double kKinkFirstStep = 0.05;   // the line search's first step: its largest variable's move (× L)
+constexpr double kMinDecrease = 1e-9;     // relative fall of the objective that counts as a step
 
 // One design point, evaluated. Frame: the start's body frame (its centre of mass at the origin).
 struct Point {
@@ -168,18 +175,88 @@ Eigen::MatrixXd jacobian(const Point& p, MassModel mass, ShapeFreedom shape) {
   return out;
 }
 
-// The Levenberg–Marquardt step −Jᵀ(JJᵀ + λI)⁻¹r in scaled (dimensionless) variables: the least-norm move
-// that lowers the linearised residuals (JJᵀ is the outcomes' count square). A vertex (or a plane's foot) on
-// its move bound that the step would push further out loses its outward direction and the step is solved
-// again (an active set), so that the bound guides the step instead of clipping it.
+// The shape's metric M = I + αΛ over its variables (per coordinate), Λ the graph Laplacian of the hull's
+// vertices (vertices) or of its faces' adjacency (faces): steps are measured in a Sobolev norm, so that a
+// fine hull moves as a smooth deformation over about `smoothing` (× L) instead of vertex by vertex (which
+// folds its tiny faces and changes the basins' structure at every step). α = (smoothing·L / mean spacing)².
+using Metric = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>;
+std::unique_ptr<Metric> shape_metric(const Point& at, ShapeFreedom shape, double smoothing, double length) {
+  if (shape == ShapeFreedom::none || !(smoothing > 0)) return nullptr;
+  const ConvexHull& hull = at.particle.hull;
+  std::vector<std::pair<int, int>> links;  // in design-variable indices
+  double spacing = 0;
+  if (shape == ShapeFreedom::vertices) {
+    for (std::size_t v = 0; v < hull.vertices.size(); ++v)
+      for (const int w : hull.neighbors(static_cast<int>(v)))
+        if (static_cast<int>(v) < w) {
+          links.emplace_back(hull.source_index[v], hull.source_index[static_cast<std::size_t>(w)]);
+          spacing += (hull.vertices[v] - hull.vertices[static_cast<std::size_t>(w)]).norm();
+        }
+  } else {
+    const std::vector<int> plane_of = detail::plane_indices(hull, at.planes);
+    std::map<std::pair<int, int>, int> edge_face;  // directed loop edge → face
+    for (std::size_t f = 0; f < hull.faces.size(); ++f) {
+      const auto& loop = hull.faces[f].loop;
+      for (std::size_t k = 0; k < loop.size(); ++k)
+        edge_face[{loop[k], loop[(k + 1) % loop.size()]}] = static_cast<int>(f);
+    }
+    for (const auto& [edge, f] : edge_face) {
+      const auto other = edge_face.find({edge.second, edge.first});
+      if (other == edge_face.end() || f > other->second) continue;
+      const int a = plane_of[static_cast<std::size_t>(f)],
+                b = plane_of[static_cast<std::size_t>(other->second)];
+      if (a < 0 || b < 0 || a == b) continue;
+      links.emplace_back(a, b);
+      spacing += (hull.faces[static_cast<std::size_t>(f)].centroid -
+                  hull.faces[static_cast<std::size_t>(other->second)].centroid)
+                     .norm();
+    }
+  }
+  if (links.empty()) return nullptr;
+  spacing /= static_cast<double>(links.size());
+  const double alpha = std::pow(smoothing * length / spacing, 2);
+  const auto n =
+      static_cast<Eigen::Index>(shape == ShapeFreedom::vertices ? at.points.size() : at.planes.size());
+  std::vector<Eigen::Triplet<double>> entries;
+  for (Eigen::Index i = 0; i < n; ++i) entries.emplace_back(i, i, 1.0);
+  for (const auto& [a, b] : links) {
+    entries.emplace_back(a, a, alpha);
+    entries.emplace_back(b, b, alpha);
+    entries.emplace_back(a, b, -alpha);
+    entries.emplace_back(b, a, -alpha);
+  }
+  Eigen::SparseMatrix<double> m(n, n);
+  m.setFromTriplets(entries.begin(), entries.end());
+  auto out = std::make_unique<Metric>(m);
+  if (out->info() != Eigen::Success) return nullptr;
+  return out;
+}
+
+// M⁻¹ applied to the shape rows of `t` (variables × columns; the centre of mass's last 3 rows untouched).
+Eigen::MatrixXd apply_inverse(const Metric* metric, Eigen::MatrixXd t) {
+  if (metric == nullptr) return t;
+  const Eigen::Index n = (t.rows() - 3) / 3;
+  for (int k = 0; k < 3; ++k) {
+    Eigen::MatrixXd block(n, t.cols());
+    for (Eigen::Index i = 0; i < n; ++i) block.row(i) = t.row(3 * i + k);
+    block = metric->solve(block);
+    for (Eigen::Index i = 0; i < n; ++i) t.row(3 * i + k) = block.row(i);
+  }
+  return t;
+}
+
+// The Levenberg–Marquardt step −M⁻¹Jᵀ(JM⁻¹Jᵀ + λI)⁻¹r in scaled (dimensionless) variables: the move of least
+// M-norm that lowers the linearised residuals (the solve is the outcomes' count square). A vertex (or a
+// plane's foot) on its move bound that the step would push further out loses its outward direction and the
+// step is solved again (an active set), so that the bound guides the step instead of clipping it.
 Eigen::VectorXd lm_step(Eigen::MatrixXd jac, const Eigen::VectorXd& residual, double lambda, const Point& at,
-                        const Bounds& bounds, ShapeFreedom shape, double length) {
+                        const Bounds& bounds, ShapeFreedom shape, double length, const Metric* metric) {
   Eigen::VectorXd d;
   std::vector<char> held(bounds.origin.size(), 0);
   for (int pass = 0; pass < kActivePasses; ++pass) {
-    const Eigen::MatrixXd a =
-        jac * jac.transpose() + lambda * Eigen::MatrixXd::Identity(jac.rows(), jac.rows());
-    d = -(jac.transpose() * a.ldlt().solve(residual));
+    const Eigen::MatrixXd g = apply_inverse(metric, jac.transpose());
+    const Eigen::MatrixXd a = jac * g + lambda * Eigen::MatrixXd::Identity(jac.rows(), jac.rows());
+    d = -(g * a.ldlt().solve(residual));
     if (shape == ShapeFreedom::none) break;
     bool changed = false;
     for (std::size_t i = 0; i < bounds.origin.size(); ++i) {
@@ -260,11 +337,48 @@ std::optional<Point> trial_point(const Point& at, const Eigen::VectorXd& d, Mass
   }
 }
 
+// The weights w ≥ 0, Σw = 1 minimising wᵀGw (G the sampled gradients' Gram matrix): over every support set,
+// the equality-constrained minimum where its weights are nonnegative (a handful of gradients: at most 2^7
+// small solves).
+Eigen::VectorXd least_norm_weights(const Eigen::MatrixXd& gram) {
+  const auto m = static_cast<int>(gram.rows());
+  Eigen::VectorXd best = Eigen::VectorXd::Zero(m);
+  best[0] = 1;
+  double best_value = gram(0, 0);
+  for (unsigned set = 1; set < (1u << m); ++set) {
+    std::vector<int> in;
+    for (int i = 0; i < m; ++i)
+      if (set & (1u << i)) in.push_back(i);
+    const auto k = static_cast<Eigen::Index>(in.size());
+    Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(k + 1, k + 1);
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(k + 1);
+    for (Eigen::Index a = 0; a < k; ++a) {
+      for (Eigen::Index b = 0; b < k; ++b)
+        kkt(a, b) = gram(in[static_cast<std::size_t>(a)], in[static_cast<std::size_t>(b)]);
+      kkt(a, k) = kkt(k, a) = 1;
+    }
+    rhs[k] = 1;
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(kkt);
+    if (!lu.isInvertible()) continue;
+    const Eigen::VectorXd sol = lu.solve(rhs);
+    if ((sol.head(k).array() < 0).any()) continue;
+    Eigen::VectorXd w = Eigen::VectorXd::Zero(m);
+    for (Eigen::Index a = 0; a < k; ++a) w[in[static_cast<std::size_t>(a)]] = sol[a];
+    const double value = w.dot(gram * w);
+    if (value < best_value) best_value = value, best = w;
+  }
+  return best;
+}
+
 void check(const DesignOptions& o) {
   if (!(o.outcome_angle > 0 && o.outcome_angle <= std::numbers::pi))
     throw Error("design: --outcome-angle must be in (0, 180] degrees");
-  if (!(o.com_margin >= 0) || !(o.max_vertex_move >= 0) || !(o.min_edge >= 0) || !(o.min_face_area >= 0))
-    throw Error("design: the bounds (--com-margin, --max-move, --min-edge, --min-face) must be numbers >= 0");
+  if (!(o.com_margin >= 0) || !(o.max_vertex_move >= 0) || !(o.min_edge >= 0) || !(o.min_face_area >= 0) ||
+      !(o.smoothing >= 0))
+    throw Error(
+        "design: the bounds (--com-margin, --max-move, --min-edge, --min-face) and --smoothing must be "
+        "numbers "
+        ">= 0");
   if (!(o.tolerance > 0) || o.max_iterations < 0 || o.max_trials < 1)
     throw Error("design: --tolerance must be > 0 and --iterations >= 0");
   if (!o.freedom.center_of_mass && o.freedom.shape == ShapeFreedom::none)
@@ -304,27 +418,42 @@ DesignResult design_quasi_static(const Particle& start, DesignTarget target, con
   double lambda = -1;
   // Levenberg–Marquardt trials from `from` with its Jacobian, λ raised after each rejection and lowered after
   // an acceptance: the first trial point with an objective below `best`'s.
+  // The linearised problem at a point, in dimensionless variables (so that λ weighs every kind of move
+  // alike: lengths per L, planes (per length) times L).
+  struct System {
+    Eigen::MatrixXd jac;
+    Eigen::VectorXd residual, scale;
+  };
+  auto system = [&](const Point& from) {
+    System out;
+    out.jac = jacobian(from, mass, shape);
+    if (!options.freedom.center_of_mass) out.jac.rightCols<3>().setZero();
+    out.residual.resize(static_cast<Eigen::Index>(from.achieved.size()));
+    for (Eigen::Index o = 0; o < out.residual.size(); ++o)
+      out.residual[o] =
+          from.achieved[static_cast<std::size_t>(o)] - result.target[static_cast<std::size_t>(o)];
+    out.scale = Eigen::VectorXd::Constant(out.jac.cols(), shape == ShapeFreedom::faces ? 1 / length : length);
+    out.scale.tail<3>().setConstant(length);
+    out.jac = out.jac * out.scale.asDiagonal();
+    return out;
+  };
   auto descend = [&](const Point& from, const Point& best, double& lam,
                      DesignStep& step) -> std::optional<Point> {
-    Eigen::MatrixXd jac = jacobian(from, mass, shape);
-    if (!options.freedom.center_of_mass) jac.rightCols<3>().setZero();
-    Eigen::VectorXd residual(static_cast<Eigen::Index>(from.achieved.size()));
-    for (Eigen::Index o = 0; o < residual.size(); ++o)
-      residual[o] = from.achieved[static_cast<std::size_t>(o)] - result.target[static_cast<std::size_t>(o)];
-    // Dimensionless variables, so that λ weighs every kind of move alike: lengths per L, planes (per
-    // length) times L.
-    Eigen::VectorXd scale =
-        Eigen::VectorXd::Constant(jac.cols(), shape == ShapeFreedom::faces ? 1 / length : length);
-    scale.tail<3>().setConstant(length);
-    jac = jac * scale.asDiagonal();
-    if (lam < 0) lam = 1e-3 * (jac * jac.transpose()).diagonal().maxCoeff();
+    const System sys = system(from);
+    const Eigen::MatrixXd& jac = sys.jac;
+    const Eigen::VectorXd& residual = sys.residual;
+    const Eigen::VectorXd& scale = sys.scale;
+    const std::unique_ptr<Metric> metric = shape_metric(from, shape, options.smoothing, length);
+    if (lam < 0) lam = 1e-3 * (jac * apply_inverse(metric.get(), jac.transpose())).diagonal().maxCoeff();
     for (int trial = 0; trial < options.max_trials; ++trial) {
       ++step.trials;
-      const Eigen::VectorXd d = lm_step(jac, residual, lam, from, bounds, shape, length).cwiseProduct(scale);
+      const Eigen::VectorXd d =
+          lm_step(jac, residual, lam, from, bounds, shape, length, metric.get()).cwiseProduct(scale);
       double moved = 0;
       std::optional<Point> next =
           trial_point(from, d, mass, shape, bounds, start.name, target, options, step, moved);
-      if (next && next->objective < best.objective) {
+      // A decrease at round-off is no progress (it would only spin out the iterations).
+      if (next && next->objective < best.objective * (1 - kMinDecrease)) {
         step.step = std::max(moved, (next->com - best.com).norm()) / length;
         lam /= 3;
         return next;
@@ -342,27 +471,51 @@ DesignResult design_quasi_static(const Particle& start, DesignTarget target, con
     if (iteration == options.max_iterations) break;
     DesignStep step;
     std::optional<Point> next = descend(at, at, lambda, step);
-    // No step lowers the objective: the point may sit on a kink (a face exactly planar, a tie), where the
-    // current structure's gradient is one side's. Gradients of nearby points (gradient sampling): each a
-    // deterministic jitter of every variable by kKinkJitter (× L), the step taken from there.
-    for (int k = 0; !next && k < kKinkSamples; ++k) {
-      std::mt19937 bits(static_cast<unsigned>(1000 * iteration + k));
-      Eigen::VectorXd jitter(3 * static_cast<Eigen::Index>(bounds.origin.size()) + 3);
-      for (Eigen::Index i = 0; i < jitter.size(); ++i) {
-        const double unit = 2.0 * static_cast<double>(bits()) / 4294967295.0 - 1.0;
-        const bool com = i >= jitter.size() - 3;
-        jitter[i] = kKinkJitter * unit * (com || shape != ShapeFreedom::faces ? length : 1 / length);
+    // No step lowers the objective: the point may sit on a kink (a face exactly planar, a tie of the
+    // rolling), where the current structure's gradient is one side's and no side's step descends far.
+    // Gradient sampling (Burke, Lewis & Overton 2005): the objective's gradients at the point and at
+    // kKinkSamples deterministic jitters within a radius; the least-norm convex combination (in the shape's
+    // metric) is a descent direction across the kink; a backtracking line search along it. The radius
+    // shrinks tenfold each round.
+    for (int round = 0; !next && round < kKinkRounds; ++round) {
+      const double radius = kKinkJitter * std::pow(0.1, round);
+      const std::unique_ptr<Metric> metric = shape_metric(at, shape, options.smoothing, length);
+      const System here = system(at);
+      std::vector<Eigen::VectorXd> gradients = {2 * here.jac.transpose() * here.residual};
+      for (int k = 0; k < kKinkSamples; ++k) {
+        std::mt19937 bits(static_cast<unsigned>(1000 * iteration + 10 * round + k));
+        Eigen::VectorXd jitter(here.scale.size());
+        for (Eigen::Index i = 0; i < jitter.size(); ++i)
+          jitter[i] = radius * (2.0 * static_cast<double>(bits()) / 4294967295.0 - 1.0);
+        if (!options.freedom.center_of_mass) jitter.tail<3>().setZero();
+        if (shape == ShapeFreedom::none) jitter.head(jitter.size() - 3).setZero();
+        DesignStep scratch;
+        double moved = 0;
+        const std::optional<Point> near = trial_point(at, jitter.cwiseProduct(here.scale), mass, shape,
+                                                      bounds, start.name, target, options, scratch, moved);
+        if (!near) continue;
+        ++step.kink_samples;
+        const System there = system(*near);
+        gradients.push_back(2 * there.jac.transpose() * there.residual);
       }
-      if (!options.freedom.center_of_mass) jitter.tail<3>().setZero();
-      if (shape == ShapeFreedom::none) jitter.head(jitter.size() - 3).setZero();
-      DesignStep scratch;
-      double moved = 0;
-      std::optional<Point> near =
-          trial_point(at, jitter, mass, shape, bounds, start.name, target, options, scratch, moved);
-      if (!near) continue;
-      ++step.kink_samples;
-      double near_lambda = lambda;
-      next = descend(*near, at, near_lambda, step);
+      Eigen::MatrixXd g(here.scale.size(), static_cast<Eigen::Index>(gradients.size()));
+      for (std::size_t k = 0; k < gradients.size(); ++k) g.col(static_cast<Eigen::Index>(k)) = gradients[k];
+      const Eigen::MatrixXd mg = apply_inverse(metric.get(), g);
+      const Eigen::VectorXd direction = -(mg * least_norm_weights(g.transpose() * mg));
+      const double longest = direction.cwiseAbs().maxCoeff();
+      if (!(longest > 0)) break;  // a stationary point of every sampled piece
+      for (double t = kKinkFirstStep / longest; t * longest > 1e-12 && !next; t /= 2) {
+        ++step.trials;
+        double moved = 0;
+        std::optional<Point> trial = trial_point(at, (t * direction).cwiseProduct(here.scale), mass, shape,
+                                                 bounds, start.name, target, options, step, moved);
+        if (trial && trial->objective < at.objective * (1 - kMinDecrease)) {
+          step.step = moved / length;
+          next = std::move(trial);
+        } else if (trial) {
+          ++step.rose;
+        }
+      }
     }
     const bool accepted = next.has_value();
     if (accepted) {

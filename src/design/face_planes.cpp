@@ -34,19 +34,23 @@ std::optional<std::vector<Vec3>> plane_vertices(const std::vector<Vec3>& planes)
   return out;
 }
 
-Eigen::MatrixXd plane_columns(const Eigen::MatrixXd& vertex_columns, const ConvexHull& hull,
-                              const Vec3& origin, const std::vector<Vec3>& planes) {
-  Eigen::MatrixXd out =
-      Eigen::MatrixXd::Zero(vertex_columns.rows(), 3 * static_cast<Eigen::Index>(planes.size()));
-  // Each hull face's plane: the one whose normal it has (the hull was built from these planes' vertices).
-  std::vector<int> plane_of(hull.faces.size(), -1);
+std::vector<int> plane_indices(const ConvexHull& hull, const std::vector<Vec3>& planes) {
+  std::vector<int> out(hull.faces.size(), -1);
   for (std::size_t f = 0; f < hull.faces.size(); ++f) {
     double best = 1 - 1e-6;
     for (std::size_t i = 0; i < planes.size(); ++i) {
       const double c = hull.faces[f].normal.dot(planes[i].normalized());
-      if (c > best) best = c, plane_of[f] = static_cast<int>(i);
+      if (c > best) best = c, out[f] = static_cast<int>(i);
     }
   }
+  return out;
+}
+
+Eigen::MatrixXd plane_columns(const Eigen::MatrixXd& vertex_columns, const ConvexHull& hull,
+                              const Vec3& origin, const std::vector<Vec3>& planes) {
+  Eigen::MatrixXd out =
+      Eigen::MatrixXd::Zero(vertex_columns.rows(), 3 * static_cast<Eigen::Index>(planes.size()));
+  const std::vector<int> plane_of = plane_indices(hull, planes);
   std::vector<std::vector<int>> faces_at(hull.vertices.size());
   for (std::size_t f = 0; f < hull.faces.size(); ++f)
     for (const int v : hull.faces[f].loop)

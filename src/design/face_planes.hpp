@@ -22,6 +22,9 @@ std::vector<Vec3> face_planes(const ConvexHull& hull, const Vec3& origin);
 // whose point is inside that hull bounds nothing (its face has vanished); it may come back as it moves.
 std::optional<std::vector<Vec3>> plane_vertices(const std::vector<Vec3>& planes);
 
+// Each hull face's plane: the one whose normal it has (within 1e-6 of the cosine), or −1.
+std::vector<int> plane_indices(const ConvexHull& hull, const std::vector<Vec3>& planes);
+
 // Columns over hull vertices (3j + k; `hull` in a frame where the planes' origin is at `origin`) to columns
 // over the planes (3f + k). A vertex where more than three faces meet moves with the three of them whose
 // normals are the most independent (the current structure's one-sided derivative: such a vertex splits as

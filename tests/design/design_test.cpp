@@ -105,8 +105,11 @@ TEST(DesignQuasiStatic, CubeAndBinomialPrismMeetTheirTargetsBySampledDrops) {
     }
     const std::vector<double> p = {6 / 16.0, 4 / 16.0, 1 / 16.0, 1 / 16.0, 4 / 16.0};
     const DesignTarget target = parse_design_target(normals_json(normals, p), "prism");
+    // The sides must change a lot (the 1/16 faces shrink): within the default 0.15·L move the design stalls
+    // at 0.0023, stated as its best achievable; 0.3·L lets it through.
+    options.max_vertex_move = 0.3;
     const DesignResult r = design_quasi_static(convex(tipped_prism()), target, options);
-    EXPECT_LT(r.max_error(), 0.002) << r.stop;
+    EXPECT_TRUE(r.reached()) << r.stop << " " << r.max_error();
     const std::vector<double> mc = sampled(built(r), target, angle, 1000000);
     for (std::size_t o = 0; o < p.size(); ++o) EXPECT_NEAR(mc[o], p[o], 0.005) << "prism outcome " << o;
     EXPECT_LT(mc.back(), 0.005);

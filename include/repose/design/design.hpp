@@ -37,9 +37,11 @@ struct DesignOptions {
                                   ///< moves further than this from where it started
   double min_edge = 0.02;       ///< × L: no hull edge gets shorter (unless it started shorter)
   double min_face_area = 1e-3;  ///< × L²: no hull face gets smaller (unless it started smaller)
-  double tolerance = 1e-4;      ///< done when every outcome is within this of its target
-  int max_iterations = 200;     ///< Levenberg–Marquardt iterations, each one exact gradient
-  int max_trials = 16;          ///< trial steps per iteration before it stalls
+  /// × L: shape steps are smooth over about this distance (a Sobolev metric; 0: every variable on its own).
+  double smoothing = 0.1;
+  double tolerance = 1e-4;   ///< done when every outcome is within this of its target
+  int max_iterations = 200;  ///< Levenberg–Marquardt iterations, each one exact gradient
+  int max_trials = 16;       ///< trial steps per iteration before it stalls
 };
 
 /// One iteration of the optimiser.
