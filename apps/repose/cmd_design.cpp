@@ -43,6 +43,7 @@ nlohmann::json design_json(const DesignCliOptions& o, const DesignTarget& target
                   {"min_edge", o.design.min_edge},
                   {"min_face", o.design.min_face_area},
                   {"smoothing", o.design.smoothing},
+                  {"max_step", o.design.max_step},
                   {"tolerance", o.design.tolerance},
                   {"iterations", o.design.max_iterations}};
   nlohmann::json outcomes = nlohmann::json::array();
@@ -138,6 +139,9 @@ Command add_design_command(CLI::App& app) {
                   "x L: no hull edge gets shorter, unless it started shorter (default 0.02)");
   sub->add_option("--min-face", opts->design.min_face_area,
                   "x L^2: no hull face gets smaller, unless it started smaller (default 0.001)");
+  sub->add_option(
+      "--max-step", opts->design.max_step,
+      "x L: the most any vertex, face or the centre of mass moves in one iteration (default 0.05)");
   sub->add_option("--smoothing", opts->design.smoothing,
                   "x L: shape steps are smooth over about this distance (0: each vertex or face on its own; "
                   "default 0.1)");

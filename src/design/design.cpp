@@ -447,8 +447,12 @@ DesignResult design_quasi_static(const Particle& start, DesignTarget target, con
     if (lam < 0) lam = 1e-3 * (jac * apply_inverse(metric.get(), jac.transpose())).diagonal().maxCoeff();
     for (int trial = 0; trial < options.max_trials; ++trial) {
       ++step.trials;
-      const Eigen::VectorXd d =
-          lm_step(jac, residual, lam, from, bounds, shape, length, metric.get()).cwiseProduct(scale);
+      Eigen::VectorXd d = lm_step(jac, residual, lam, from, bounds, shape, length, metric.get());
+      // A trust region: no variable moves more than max_step (× L) in one iteration, so that the shape
+      // follows its gradient's path instead of jumping across many changes of structure at once.
+      const double longest = d.cwiseAbs().maxCoeff();
+      if (longest > options.max_step) d *= options.max_step / longest;
+      d = d.cwiseProduct(scale);
       double moved = 0;
       std::optional<Point> next =
           trial_point(from, d, mass, shape, bounds, start.name, target, options, step, moved);
