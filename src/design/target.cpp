@@ -55,6 +55,7 @@ DesignTarget parse_design_target(std::string_view json_text, const std::string& 
     fail(source, "not valid JSON (at byte " + std::to_string(e.byte) + ")");
   }
   DesignTarget target;
+  target.source = source;
   if (j.is_array()) {
     for (std::size_t i = 0; i < j.size(); ++i) {
       if (!j[i].is_array() || j[i].size() != 2)
@@ -125,7 +126,8 @@ void assign_outcome_faces(DesignTarget& target, const ConvexHull& hull, double m
     if (target.outcomes[k].faces.empty()) {
       const Vec3& m = target.outcomes[k].normal;
       std::ostringstream s;
-      s << "design target: outcome " << k + 1 << "'s normal (" << m.x() << ", " << m.y() << ", " << m.z()
+      s << "design target " << (target.source.empty() ? std::string("(unnamed)") : target.source)
+        << ": outcome " << k + 1 << "'s normal (" << m.x() << ", " << m.y() << ", " << m.z()
         << ") is no outcome of this hull: its nearest face is " << degrees(nearest[k])
         << " degrees away (at most " << degrees(max_angle) << ": " << angle_option << ")";
       throw Error(s.str());

@@ -20,6 +20,7 @@ struct DesignOutcome {
 };
 
 struct DesignTarget {
+  std::string source;  ///< where it was read from (parse_design_target's `source`): errors name it
   std::vector<DesignOutcome> outcomes;
   /// Hull faces assigned to no outcome (assign_outcome_faces): their target probability is 0.
   std::vector<int> unassigned_faces;

@@ -1,0 +1,88 @@
+// `repose design` through the real executable: a design's files and JSON, and every class of bad input
+// (a target that does not sum to 1, a normal that is no outcome, an unknown freedom, an option out of range)
+// exiting 2 with one line naming it and no files written.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli_test_support.hpp"
+#include "run_cli.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using repose::test::expect_bad_input;
+using repose::test::parse_json;
+using repose::test::run_cli;
+using repose::test::shell_quote;
+
+class DesignCli : public repose::test::TempDirTest {
+ protected:
+  std::string target(const std::string& name, const std::string& json) {
+    const fs::path path = fs::path(dir_) / name;
+    std::ofstream(path) << json;
+    return shell_quote(path.string());
+  }
+  const std::string cube_target =
+      "[[[0,0,-1],0.4],[[0,0,1],0.12],[[1,0,0],0.12],[[-1,0,0],0.12],[[0,1,0],0.12],[[0,-1,0],0.12]]";
+};
+
+TEST_F(DesignCli, ADesignWritesItsHullAndItsJsonAndMeetsTheTarget) {
+  const std::string out = shell_quote(dir_.string() + "/out");
+  const auto r = run_cli("design box:x=1,y=1,z=1 --target " + target("t.json", cube_target) + " --out " +
+                         out + " --json");
+  const nlohmann::json j = parse_json(r);
+  EXPECT_TRUE(j["reached"].get<bool>());
+  EXPECT_LT(j["max_error"].get<double>(), 1e-4);
+  ASSERT_EQ(j["outcomes"].size(), 6u);
+  EXPECT_NEAR(j["outcomes"][0]["achieved"].get<double>(), 0.4, 1e-4);
+  EXPECT_NEAR(j["outcomes"][0]["start"].get<double>(), 1.0 / 6, 1e-12);  // the cube: 1/6 by symmetry
+  EXPECT_FALSE(j["history"].empty());
+  for (const char* file : {"design.obj", "design.stl", "design.json"})
+    EXPECT_TRUE(fs::exists(dir_.string() + "/out/" + file)) << file;
+  // The design read back (its OBJ and its centre of mass) lands as the JSON says.
+  const auto com = j["center_of_mass"];
+  const auto back =
+      run_cli("design " + shell_quote(dir_.string() + "/out/design.obj") + " --inertia convex --com " +
+              std::to_string(com[0].get<double>()) + "," + std::to_string(com[1].get<double>()) + "," +
+              std::to_string(com[2].get<double>()) + " --target " + target("t2.json", cube_target) +
+              " --iterations 0 --json");
+  const nlohmann::json b = parse_json(back);
+  // 1e-5: --com passes the centre of mass with std::to_string's 6 decimals (1e-6 of L ~ 1e-6 in probability).
+  for (std::size_t o = 0; o < 6; ++o)
+    EXPECT_NEAR(b["outcomes"][o]["start"].get<double>(), j["outcomes"][o]["achieved"].get<double>(), 1e-5)
+        << o;
+}
+
+TEST_F(DesignCli, BadTargetsAndOptionsAreOneLineErrorsAndWriteNothing) {
+  const std::string out = shell_quote(dir_.string() + "/out");
+  expect_bad_input(run_cli("design box:x=1,y=1,z=1 --target " +
+                           target("sum.json", "[[[0,0,1],0.5],[[0,0,-1],0.2]]") + " --out " + out),
+                   {"sum.json", "sum to 0.7"});
+  expect_bad_input(run_cli("design box:x=1,y=1,z=1 --target " +
+                           target("tilted.json", "[[[0,0,1],0.5],[[0,0.7,-0.7],0.5]]") + " --out " + out),
+                   {"tilted.json", "outcome 2", "--outcome-angle"});
+  expect_bad_input(
+      run_cli("design box:x=1,y=1,z=1 --target " + target("t.json", cube_target) + " --vary shape"),
+      {"--vary", "center-of-mass"});
+  expect_bad_input(
+      run_cli("design box:x=1,y=1,z=1 --target " + target("t.json", cube_target) + " --max-move -1"),
+      {"--max-move"});
+  expect_bad_input(run_cli("design box:x=1,y=1,z=1 --target " + shell_quote(dir_.string() + "/missing.json")),
+                   {"missing.json"});
+  EXPECT_FALSE(fs::exists(dir_.string() + "/out/design.json"));
+}
+
+TEST_F(DesignCli, AnUnreachableTargetSaysSoAndGivesItsBestAchievable) {
+  const auto r =
+      run_cli("design box:x=1,y=1,z=1 --vary center-of-mass --target " + target("t.json", cube_target));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, ::testing::HasSubstr("NOT reached"));
+  EXPECT_THAT(r.out, ::testing::HasSubstr("best achievable"));
+}
+
+}  // namespace
