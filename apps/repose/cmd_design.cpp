@@ -2,7 +2,6 @@
 // probability per outcome under quasi-static rolling (docs/inverse-design.md).
 #include <cmath>
 #include <iostream>
-#include <nlohmann/json.hpp>
 #include <numbers>
 #include <string>
 
@@ -10,6 +9,7 @@
 #include "format.hpp"
 #include "mesh_options.hpp"
 #include "repose/design/design.hpp"
+#include "repose/design/design_json.hpp"
 #include "repose/design/target.hpp"
 #include "repose/io/mesh_io.hpp"
 #include "repose/model/particle.hpp"
@@ -30,57 +30,6 @@ struct DesignCliOptions {
   std::string out_dir;
   bool json = false;
 };
-
-nlohmann::json design_json(const DesignCliOptions& o, const DesignTarget& target, const DesignResult& r) {
-  nlohmann::json j;
-  j["source"] = o.source;
-  j["target_file"] = o.target;
-  j["options"] = {{"vary", o.vary},
-                  {"mass", o.mass},
-                  {"outcome_angle_degrees", o.outcome_angle},
-                  {"com_margin", o.design.com_margin},
-                  {"max_move", o.design.max_vertex_move},
-                  {"min_edge", o.design.min_edge},
-                  {"min_face", o.design.min_face_area},
-                  {"smoothing", o.design.smoothing},
-                  {"max_step", o.design.max_step},
-                  {"tolerance", o.design.tolerance},
-                  {"iterations", o.design.max_iterations}};
-  nlohmann::json outcomes = nlohmann::json::array();
-  for (std::size_t k = 0; k < target.outcomes.size(); ++k)
-    outcomes.push_back({{"normal", to_json(target.outcomes[k].normal)},
-                        {"target", r.target[k]},
-                        {"start", r.start[k]},
-                        {"achieved", r.achieved[k]}});
-  j["outcomes"] = outcomes;
-  j["unassigned"] = {{"target", 0.0}, {"start", r.start.back()}, {"achieved", r.achieved.back()}};
-  j["stop"] = r.stop;
-  j["reached"] = r.reached();
-  j["max_error"] = r.max_error();
-  j["center_of_mass"] = to_json(r.center_of_mass);
-  j["centroid"] = to_json(r.centroid);
-  // Where the centre of mass sits relative to a uniform part's: what an insert or cavity must move it by.
-  j["center_of_mass_offset"] = to_json(Vec3(r.center_of_mass - r.centroid));
-  j["characteristic_length"] = r.length;
-  j["hull"] = {{"vertices", r.vertices.size()}, {"triangles", r.mesh.triangles.size()}};
-  nlohmann::json history = nlohmann::json::array();
-  for (const DesignStep& s : r.history)
-    history.push_back({{"objective", s.objective},
-                       {"max_error", s.max_error},
-                       {"step", s.step},
-                       {"stable_faces", s.stable_faces},
-                       {"accepted", s.accepted},
-                       {"structure_changed", s.structure_changed},
-                       {"trials", s.trials},
-                       {"rejected",
-                        {{"rose", s.rose},
-                         {"unprintable", s.unprintable},
-                         {"com_outside", s.com_outside},
-                         {"degenerate", s.degenerate}}},
-                       {"kink_samples", s.kink_samples}});
-  j["history"] = history;
-  return j;
-}
 
 void print_design(const DesignCliOptions& o, const DesignTarget& target, const DesignResult& r) {
   std::cout << "design of " << o.source << " for " << o.target << " (vary " << o.vary << ")\n";
@@ -164,14 +113,14 @@ Command add_design_command(CLI::App& app) {
             if (!o.out_dir.empty()) ensure_output_directory(o.out_dir);
             const Particle start = load_particle(o.source, 1.0, o.mesh.resolve(false));
             const DesignResult r = design_quasi_static(start, target, o.design);
-            const nlohmann::json j = design_json(o, target, r);
+            const std::string j = design_json(o.source, target, o.design, r) + "\n";
             if (!o.out_dir.empty()) {
               write_obj(r.mesh, o.out_dir + "/design.obj");
               write_stl(r.mesh, o.out_dir + "/design.stl");
-              write_file_atomically(o.out_dir + "/design.json", j.dump(2) + "\n");
+              write_file_atomically(o.out_dir + "/design.json", j);
             }
             if (o.json) {
-              std::cout << j.dump(2) << "\n";
+              std::cout << j;
             } else {
               print_design(o, target, r);
               if (!o.out_dir.empty()) std::cout << "wrote " << o.out_dir << "/design.{obj,stl,json}\n";

@@ -13,10 +13,10 @@ the command line's --json (docs/python.md).
 """
 from ._repose import Particle, Settler as _Settler
 from . import _repose
-from ._results import PosesResult, Pose, Record, SettleResult, Series
+from ._results import DesignResult, PosesResult, Pose, Record, SettleResult, Series
 
-__all__ = ["Particle", "Settler", "settle", "poses", "quasi_static", "SettleResult", "PosesResult", "Pose",
-           "Series"]
+__all__ = ["Particle", "Settler", "settle", "poses", "quasi_static", "design", "SettleResult", "PosesResult", "Pose",
+           "Series", "DesignResult"]
 __version__ = "0.1.0"
 
 
@@ -85,3 +85,26 @@ def quasi_static(particle, *, persistence=None):
     """The rest poses and their exact quasi-static probabilities (steepest descent of the centre of mass's
     height from a uniform random orientation: basin areas on the Gauss map / 4π), as a list of Pose."""
     return PosesResult(_repose.quasi_static(particle, persistence)).poses
+
+
+def design(particle, target, **options):
+    """Designs the centre of mass and/or the convex hull of `particle` for a target probability per outcome
+    under quasi-static rolling (`repose design`, docs/inverse-design.md) and returns a DesignResult.
+
+    `target`: a path to a JSON file, or the JSON itself as a list of [normal, probability] pairs (convex_dice's
+    form), {"outcomes": [{"normal": [...], "probability": p}, ...]} or {"fair": [normals]}; normals in the
+    mesh's frame. Keyword options are the command line's: vary ("vertices+center-of-mass" by default,
+    "center-of-mass", "vertices", "faces", "faces+center-of-mass"), mass ("follows" or "fixed"),
+    outcome_angle (degrees), com_margin, max_move, max_step, min_edge, min_face, smoothing (x L, L^2),
+    tolerance, iterations. Raises ValueError for bad input."""
+    import json as _json
+    import os as _os
+    if isinstance(target, (str, _os.PathLike)) and not str(target).lstrip().startswith(("[", "{")):
+        name = _os.fspath(target)
+        with open(name, encoding="utf-8") as f:
+            text = f.read()
+    else:
+        name = "target"
+        text = target if isinstance(target, str) else _json.dumps(target)
+    summary, vertices, triangles = _repose.design(particle, text, name, dict(options))
+    return DesignResult(summary, vertices, triangles)

@@ -89,3 +89,18 @@ class PosesResult(Record):
     def probabilities(self):
         """The poses' probabilities, in the order of `poses` (a NumPy array)."""
         return np.array([p["probability"] for p in self._data["poses"]])
+
+
+class DesignResult(Record):
+    """A design: the fields of `repose design --json` (outcomes with target, start and achieved, stop,
+    reached, max_error, center_of_mass, centroid, center_of_mass_offset, history, ...) and the design's hull
+    as `vertices` (n x 3, the mesh's frame) and `triangles` (m x 3, outward)."""
+
+    def __init__(self, summary_json, vertices, triangles):
+        super().__init__(json.loads(summary_json))
+        object.__setattr__(self, "vertices", np.array(vertices, dtype=float).reshape(-1, 3))
+        object.__setattr__(self, "triangles", np.array(triangles, dtype=np.int64).reshape(-1, 3))
+
+    def achieved(self):
+        """The achieved probability of each outcome, in the target's order (numpy array)."""
+        return np.array([o["achieved"] for o in self._data["outcomes"]])

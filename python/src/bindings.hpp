@@ -30,5 +30,6 @@ SettleParams params_from(const py::dict& kwargs, const std::string& context, Set
 
 void bind_particle(py::module_& m);
 void bind_runs(py::module_& m);
+void bind_design(py::module_& m);
 
 }  // namespace repose::python

@@ -21,4 +21,5 @@ PYBIND11_MODULE(_repose, m) {
   });
   repose::python::bind_particle(m);
   repose::python::bind_runs(m);
+  repose::python::bind_design(m);
 }

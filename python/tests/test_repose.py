@@ -324,3 +324,16 @@ def test_a_toss_with_friction_reports_its_whole_ledger_and_every_fallback():
     assert set(r.captures._data) == {"zeno", "painleve", "tip_offs"}
     paper = repose.settle(p, "axis-angle:1,1,1,0.9", drop_height=0.5)
     assert not hasattr(paper, "fallbacks")
+
+
+def test_design_meets_a_cube_target_and_rejects_bad_options():
+    target = [[[0, 0, -1], 0.4], [[0, 0, 1], 0.12], [[1, 0, 0], 0.12], [[-1, 0, 0], 0.12], [[0, 1, 0], 0.12],
+              [[0, -1, 0], 0.12]]
+    d = repose.design(repose.Particle.shape("box:x=1,y=1,z=1"), target)
+    assert d.reached and d.max_error < 1e-4
+    assert abs(d.achieved()[0] - 0.4) < 1e-4
+    assert d.vertices.shape[1] == 3 and d.triangles.shape[1] == 3 and len(d.triangles) >= 12
+    with pytest.raises(ValueError, match="max_mvoe"):
+        repose.design(repose.Particle.shape("box:x=1,y=1,z=1"), target, max_mvoe=0.2)
+    with pytest.raises(ValueError, match="sum to"):
+        repose.design(repose.Particle.shape("box:x=1,y=1,z=1"), [[[0, 0, 1], 0.5]])
