@@ -88,9 +88,8 @@ Command add_design_command(CLI::App& app) {
                   "x L: no hull edge gets shorter, unless it started shorter (default 0.02)");
   sub->add_option("--min-face", opts->design.min_face_area,
                   "x L^2: no hull face gets smaller, unless it started smaller (default 0.001)");
-  sub->add_option(
-      "--max-step", opts->design.max_step,
-      "x L: the most any vertex, face or the centre of mass moves in one iteration (default 0.05)");
+  sub->add_option("--max-step", opts->design.max_step,
+                  "x L: the most any vertex or face plane moves in one iteration (default 0.05)");
   sub->add_option("--smoothing", opts->design.smoothing,
                   "x L: shape steps are smooth over about this distance (0: each vertex or face on its own; "
                   "default 0.1)");

@@ -1,11 +1,12 @@
 // repose.design: the quasi-static inverse design (include/repose/design/design.hpp) from Python.
+#include "repose/design/design.hpp"
+
 #include <pybind11/stl.h>
 
 #include <cmath>
 #include <numbers>
 
 #include "bindings.hpp"
-#include "repose/design/design.hpp"
 #include "repose/design/design_json.hpp"
 #include "repose/design/target.hpp"
 #include "repose/error.hpp"
@@ -53,12 +54,14 @@ DesignOptions design_options(const py::dict& kwargs) {
       o.tolerance = number();
     } else if (name == "iterations") {
       const double n = number();
-      if (!(n >= 0 && n == std::floor(n) && n < 1e9)) throw Error("design: iterations must be an integer >= 0");
+      if (!(n >= 0 && n == std::floor(n) && n < 1e9))
+        throw Error("design: iterations must be an integer >= 0");
       o.max_iterations = static_cast<int>(n);
     } else {
-      throw Error("design: unknown option '" + name +
-                  "' (vary, mass, outcome_angle, com_margin, max_move, max_step, min_edge, min_face, smoothing, "
-                  "tolerance, iterations)");
+      throw Error(
+          "design: unknown option '" + name +
+          "' (vary, mass, outcome_angle, com_margin, max_move, max_step, min_edge, min_face, smoothing, "
+          "tolerance, iterations)");
     }
   }
   return o;

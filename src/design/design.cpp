@@ -440,30 +440,45 @@ DesignResult design_quasi_static(const Particle& start, DesignTarget target, con
   auto descend = [&](const Point& from, const Point& best, double& lam,
                      DesignStep& step) -> std::optional<Point> {
     const System sys = system(from);
-    const Eigen::MatrixXd& jac = sys.jac;
     const Eigen::VectorXd& residual = sys.residual;
     const Eigen::VectorXd& scale = sys.scale;
     const std::unique_ptr<Metric> metric = shape_metric(from, shape, options.smoothing, length);
-    if (lam < 0) lam = 1e-3 * (jac * apply_inverse(metric.get(), jac.transpose())).diagonal().maxCoeff();
-    for (int trial = 0; trial < options.max_trials; ++trial) {
-      ++step.trials;
-      Eigen::VectorXd d = lm_step(jac, residual, lam, from, bounds, shape, length, metric.get());
-      // A trust region: no variable moves more than max_step (× L) in one iteration, so that the shape
-      // follows its gradient's path instead of jumping across many changes of structure at once.
-      const double longest = d.cwiseAbs().maxCoeff();
-      if (longest > options.max_step) d *= options.max_step / longest;
-      d = d.cwiseProduct(scale);
-      double moved = 0;
-      std::optional<Point> next =
-          trial_point(from, d, mass, shape, bounds, start.name, target, options, step, moved);
-      // A decrease at round-off is no progress (it would only spin out the iterations).
-      if (next && next->objective < best.objective * (1 - kMinDecrease)) {
-        step.step = std::max(moved, (next->com - best.com).norm()) / length;
-        lam /= 3;
-        return next;
+    if (lam < 0)
+      lam = 1e-3 * (sys.jac * apply_inverse(metric.get(), sys.jac.transpose())).diagonal().maxCoeff();
+    // The trials move every variable together first; if none lowers the objective, the centre of mass alone,
+    // then the shape alone (a block step: on a fine hull the joint least-norm step is mostly the vertices',
+    // whose many changes of structure can defeat it where the centre of mass's share alone would descend).
+    const Eigen::Index n = sys.jac.cols() - 3;
+    const double first_lam = lam;
+    const bool both = options.freedom.center_of_mass && shape != ShapeFreedom::none;
+    for (int block = 0; block < (both ? 3 : 1); ++block) {
+      Eigen::MatrixXd jac = sys.jac;
+      if (block == 1) jac.leftCols(n).setZero();
+      if (block == 2) jac.rightCols<3>().setZero();
+      double block_lam = first_lam;  // each block from this call's λ (block 0's has grown by its rejections)
+      const int trials = block == 0 ? options.max_trials : std::max(1, options.max_trials / 2);
+      for (int trial = 0; trial < trials; ++trial) {
+        ++step.trials;
+        Eigen::VectorXd d = lm_step(jac, residual, block_lam, from, bounds, shape, length, metric.get());
+        // A trust region: no shape variable moves more than max_step (× L) in one iteration, so that the
+        // shape follows its gradient's path instead of jumping across many changes of structure at once (the
+        // centre of mass, whose probabilities vary smoothly over much longer moves, is not held back).
+        const double longest = d.head(n).cwiseAbs().maxCoeff();
+        if (longest > options.max_step) d *= options.max_step / longest;
+        d = d.cwiseProduct(scale);
+        double moved = 0;
+        std::optional<Point> next =
+            trial_point(from, d, mass, shape, bounds, start.name, target, options, step, moved);
+        // A decrease at round-off is no progress (it would only spin out the iterations).
+        if (next && next->objective < best.objective * (1 - kMinDecrease)) {
+          step.step = std::max(moved, (next->com - best.com).norm()) / length;
+          lam = block_lam / 3;
+          return next;
+        }
+        if (next) ++step.rose;
+        block_lam *= 4;
       }
-      if (next) ++step.rose;
-      lam *= 4;
+      if (block == 0) lam = block_lam;
     }
     return std::nullopt;
   };

@@ -37,7 +37,7 @@ struct DesignOptions {
                                   ///< moves further than this from where it started
   double min_edge = 0.02;       ///< × L: no hull edge gets shorter (unless it started shorter)
   double min_face_area = 1e-3;  ///< × L²: no hull face gets smaller (unless it started smaller)
-  double max_step = 0.05;       ///< × L: the most any variable moves in one iteration (a trust region)
+  double max_step = 0.05;       ///< × L: the most any shape variable moves in one iteration (a trust region)
   /// × L: shape steps are smooth over about this distance (a Sobolev metric; 0: every variable on its own).
   double smoothing = 0.1;
   double tolerance = 1e-4;   ///< done when every outcome is within this of its target
