@@ -203,7 +203,7 @@ TEST_F(FirstHourCli, ImplausibleSizeNamesMeshUnits) {
 TEST_F(FirstHourCli, TyposAreAnsweredWithTheClosestNames) {
   expect_refused(run_cli("pose " + kBox),
                  "unknown subcommand 'pose' (did you mean poses?); the subcommands are info, settle, paper, "
-                 "poses or merge (see repose --help)");
+                 "poses, merge or design (see repose --help)");
   expect_refused(run_cli("poses " + kBox + " --drop 2000"),
                  "poses: unknown option --drop (did you mean --drops/-n?) (see repose poses --help)");
   expect_refused(
@@ -211,11 +211,12 @@ TEST_F(FirstHourCli, TyposAreAnsweredWithTheClosestNames) {
       "settle: unknown option --orientaton (did you mean --orientation?) (see repose settle --help)");
   expect_refused(run_cli("info " + kBox + " --josn"),
                  "info: unknown option --josn (did you mean --json?) (see repose info --help)");
-  expect_refused(run_cli("xyzzy"),
-                 "unknown subcommand 'xyzzy'; the subcommands are info, settle, paper, poses or merge (see "
-                 "repose --help)");
+  expect_refused(
+      run_cli("xyzzy"),
+      "unknown subcommand 'xyzzy'; the subcommands are info, settle, paper, poses, merge or design (see "
+      "repose --help)");
   expect_refused(run_cli(""),
-                 "a subcommand is required: info, settle, paper, poses or merge (see repose --help)");
+                 "a subcommand is required: info, settle, paper, poses, merge or design (see repose --help)");
   // Other parse errors point at the subcommand's help too.
   const CliResult missing = run_cli("info");
   EXPECT_EQ(missing.exit_code, 2);
