@@ -1,0 +1,156 @@
+// Design steps (design_step.hpp).
+#include "design_step.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <cmath>
+#include <map>
+#include <vector>
+
+#include "face_planes.hpp"
+
+namespace repose::detail {
+
+namespace {
+constexpr int kActivePasses = 4;  // re-solves of a step as vertices reach their move bound
+}  // namespace
+
+// The shape's metric M = I + αΛ over its variables (per coordinate), Λ the graph Laplacian of the hull's
+// vertices (vertices) or of its faces' adjacency (faces): steps are measured in a Sobolev norm, so that a
+// fine hull moves as a smooth deformation over about `smoothing` (× L) instead of vertex by vertex (which
+// folds its tiny faces and changes the basins' structure at every step). α = (smoothing·L / mean spacing)².
+using Metric = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>;
+std::unique_ptr<Metric> shape_metric(const Point& at, ShapeFreedom shape, double smoothing, double length) {
+  if (shape == ShapeFreedom::none || !(smoothing > 0)) return nullptr;
+  const ConvexHull& hull = at.particle.hull;
+  std::vector<std::pair<int, int>> links;  // in design-variable indices
+  double spacing = 0;
+  if (shape == ShapeFreedom::vertices) {
+    for (std::size_t v = 0; v < hull.vertices.size(); ++v)
+      for (const int w : hull.neighbors(static_cast<int>(v)))
+        if (static_cast<int>(v) < w) {
+          links.emplace_back(hull.source_index[v], hull.source_index[static_cast<std::size_t>(w)]);
+          spacing += (hull.vertices[v] - hull.vertices[static_cast<std::size_t>(w)]).norm();
+        }
+  } else {
+    const std::vector<int> plane_of = detail::plane_indices(hull, at.planes);
+    std::map<std::pair<int, int>, int> edge_face;  // directed loop edge → face
+    for (std::size_t f = 0; f < hull.faces.size(); ++f) {
+      const auto& loop = hull.faces[f].loop;
+      for (std::size_t k = 0; k < loop.size(); ++k)
+        edge_face[{loop[k], loop[(k + 1) % loop.size()]}] = static_cast<int>(f);
+    }
+    for (const auto& [edge, f] : edge_face) {
+      const auto other = edge_face.find({edge.second, edge.first});
+      if (other == edge_face.end() || f > other->second) continue;
+      const int a = plane_of[static_cast<std::size_t>(f)],
+                b = plane_of[static_cast<std::size_t>(other->second)];
+      if (a < 0 || b < 0 || a == b) continue;
+      links.emplace_back(a, b);
+      spacing += (hull.faces[static_cast<std::size_t>(f)].centroid -
+                  hull.faces[static_cast<std::size_t>(other->second)].centroid)
+                     .norm();
+    }
+  }
+  if (links.empty()) return nullptr;
+  spacing /= static_cast<double>(links.size());
+  const double alpha = std::pow(smoothing * length / spacing, 2);
+  const auto n =
+      static_cast<Eigen::Index>(shape == ShapeFreedom::vertices ? at.points.size() : at.planes.size());
+  std::vector<Eigen::Triplet<double>> entries;
+  for (Eigen::Index i = 0; i < n; ++i) entries.emplace_back(i, i, 1.0);
+  for (const auto& [a, b] : links) {
+    entries.emplace_back(a, a, alpha);
+    entries.emplace_back(b, b, alpha);
+    entries.emplace_back(a, b, -alpha);
+    entries.emplace_back(b, a, -alpha);
+  }
+  Eigen::SparseMatrix<double> m(n, n);
+  m.setFromTriplets(entries.begin(), entries.end());
+  auto out = std::make_unique<Metric>(m);
+  if (out->info() != Eigen::Success) return nullptr;
+  return out;
+}
+
+// M⁻¹ applied to the shape rows of `t` (variables × columns; the centre of mass's last 3 rows untouched).
+Eigen::MatrixXd apply_inverse(const Metric* metric, Eigen::MatrixXd t) {
+  if (metric == nullptr) return t;
+  const Eigen::Index n = (t.rows() - 3) / 3;
+  for (int k = 0; k < 3; ++k) {
+    Eigen::MatrixXd block(n, t.cols());
+    for (Eigen::Index i = 0; i < n; ++i) block.row(i) = t.row(3 * i + k);
+    block = metric->solve(block);
+    for (Eigen::Index i = 0; i < n; ++i) t.row(3 * i + k) = block.row(i);
+  }
+  return t;
+}
+
+// The Levenberg–Marquardt step −M⁻¹Jᵀ(JM⁻¹Jᵀ + λI)⁻¹r in scaled (dimensionless) variables: the move of least
+// M-norm that lowers the linearised residuals (the solve is the outcomes' count square). A vertex (or a
+// plane's foot) on its move bound that the step would push further out loses its outward direction and the
+// step is solved again (an active set), so that the bound guides the step instead of clipping it.
+Eigen::VectorXd lm_step(Eigen::MatrixXd jac, const Eigen::VectorXd& residual, double lambda, const Point& at,
+                        const Bounds& bounds, ShapeFreedom shape, double length, const Metric* metric) {
+  Eigen::VectorXd d;
+  std::vector<char> held(bounds.origin.size(), 0);
+  for (int pass = 0; pass < kActivePasses; ++pass) {
+    const Eigen::MatrixXd g = apply_inverse(metric, jac.transpose());
+    const Eigen::MatrixXd a = jac * g + lambda * Eigen::MatrixXd::Identity(jac.rows(), jac.rows());
+    d = -(g * a.ldlt().solve(residual));
+    if (shape == ShapeFreedom::none) break;
+    bool changed = false;
+    for (std::size_t i = 0; i < bounds.origin.size(); ++i) {
+      // The bounded point (a vertex, or a plane's foot), and the direction in this variable's space that
+      // moves it outward.
+      const Vec3 x = shape == ShapeFreedom::vertices ? at.points[i] : foot(at.planes[i]);
+      const Vec3 out = x - bounds.origin[i];
+      if (held[i] || out.norm() < bounds.max_move - 1e-6 * length) continue;
+      Vec3 u = out.normalized();
+      if (shape == ShapeFreedom::faces) {
+        const Vec3 p = at.planes[i].normalized();  // ∂foot/∂p ∝ I − 2 p̂p̂ᵀ (symmetric)
+        u = (u - 2 * p.dot(u) * p).normalized();
+      }
+      const auto col = 3 * static_cast<Eigen::Index>(i);
+      if (d.segment<3>(col).dot(u) <= 0) continue;
+      held[i] = changed = true;
+      jac.middleCols<3>(col) = jac.middleCols<3>(col) * (Mat3::Identity() - u * u.transpose());
+    }
+    if (!changed) break;
+  }
+  return d;
+}
+
+// The weights w ≥ 0, Σw = 1 minimising wᵀGw (G the sampled gradients' Gram matrix): over every support set,
+// the equality-constrained minimum where its weights are nonnegative (a handful of gradients: at most 2^7
+// small solves).
+Eigen::VectorXd least_norm_weights(const Eigen::MatrixXd& gram) {
+  const auto m = static_cast<int>(gram.rows());
+  Eigen::VectorXd best = Eigen::VectorXd::Zero(m);
+  best[0] = 1;
+  double best_value = gram(0, 0);
+  for (unsigned set = 1; set < (1u << m); ++set) {
+    std::vector<int> in;
+    for (int i = 0; i < m; ++i)
+      if (set & (1u << i)) in.push_back(i);
+    const auto k = static_cast<Eigen::Index>(in.size());
+    Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(k + 1, k + 1);
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(k + 1);
+    for (Eigen::Index a = 0; a < k; ++a) {
+      for (Eigen::Index b = 0; b < k; ++b)
+        kkt(a, b) = gram(in[static_cast<std::size_t>(a)], in[static_cast<std::size_t>(b)]);
+      kkt(a, k) = kkt(k, a) = 1;
+    }
+    rhs[k] = 1;
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(kkt);
+    if (!lu.isInvertible()) continue;
+    const Eigen::VectorXd sol = lu.solve(rhs);
+    if ((sol.head(k).array() < 0).any()) continue;
+    Eigen::VectorXd w = Eigen::VectorXd::Zero(m);
+    for (Eigen::Index a = 0; a < k; ++a) w[in[static_cast<std::size_t>(a)]] = sol[a];
+    const double value = w.dot(gram * w);
+    if (value < best_value) best_value = value, best = w;
+  }
+  return best;
+}
+
+}  // namespace repose::detail
