@@ -3,17 +3,11 @@
 // bounds hold. The shape's variables are its vertices or its face planes (face_planes.hpp).
 #include "repose/design/design.hpp"
 
-#include <Eigen/Cholesky>
-#include <Eigen/LU>
-#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <memory>
 #include <numbers>
 #include <optional>
-#include <random>
-#include <set>
 #include <sstream>
 
 #include "design_point.hpp"
@@ -52,18 +46,13 @@ double DesignResult::max_error() const {
 
 namespace {
 
-constexpr int kKinkSamples = 6;          // nearby points whose gradients are sampled when no step descends
-constexpr int kKinkRounds = 3;           // sampling rounds, the radius shrinking tenfold each
-constexpr double kKinkJitter = 1e-3;     // the first round's radius, per variable (dimensionless: × L)
-constexpr double kKinkFirstStep = 0.05;  // the line search's first step: its largest variable's move (× L)
-constexpr double kMinDecrease = 1e-9;    // relative fall of the objective that counts as a step
+constexpr double kMinDecrease = 1e-9;  // relative fall of the objective that counts as a step
 
 using detail::apply_inverse;
 using detail::Bounds;
 using detail::evaluate;
 using detail::foot;
 using detail::jacobian;
-using detail::least_norm_weights;
 using detail::lm_step;
 using detail::Metric;
 using detail::Point;
@@ -192,52 +181,6 @@ DesignResult design_quasi_static(const Particle& start, DesignTarget target, con
     if (iteration == options.max_iterations) break;
     DesignStep step;
     std::optional<Point> next = descend(at, at, lambda, step);
-    // No step lowers the objective: the point may sit on a kink (a face exactly planar, a tie of the
-    // rolling), where the current structure's gradient is one side's and no side's step descends far.
-    // Gradient sampling (Burke, Lewis & Overton 2005): the objective's gradients at the point and at
-    // kKinkSamples deterministic jitters within a radius; the least-norm convex combination (in the shape's
-    // metric) is a descent direction across the kink; a backtracking line search along it. The radius
-    // shrinks tenfold each round.
-    for (int round = 0; !next && round < kKinkRounds; ++round) {
-      const double radius = kKinkJitter * std::pow(0.1, round);
-      const std::unique_ptr<Metric> metric = shape_metric(at, shape, options.smoothing, length);
-      const System here = system(at);
-      std::vector<Eigen::VectorXd> gradients = {2 * here.jac.transpose() * here.residual};
-      for (int k = 0; k < kKinkSamples; ++k) {
-        std::mt19937 bits(static_cast<unsigned>(1000 * iteration + 10 * round + k));
-        Eigen::VectorXd jitter(here.scale.size());
-        for (Eigen::Index i = 0; i < jitter.size(); ++i)
-          jitter[i] = radius * (2.0 * static_cast<double>(bits()) / 4294967295.0 - 1.0);
-        if (!options.freedom.center_of_mass) jitter.tail<3>().setZero();
-        if (shape == ShapeFreedom::none) jitter.head(jitter.size() - 3).setZero();
-        DesignStep scratch;
-        double moved = 0;
-        const std::optional<Point> near = trial_point(at, jitter.cwiseProduct(here.scale), mass, shape,
-                                                      bounds, start.name, target, options, scratch, moved);
-        if (!near) continue;
-        ++step.kink_samples;
-        const System there = system(*near);
-        gradients.push_back(2 * there.jac.transpose() * there.residual);
-      }
-      Eigen::MatrixXd g(here.scale.size(), static_cast<Eigen::Index>(gradients.size()));
-      for (std::size_t k = 0; k < gradients.size(); ++k) g.col(static_cast<Eigen::Index>(k)) = gradients[k];
-      const Eigen::MatrixXd mg = apply_inverse(metric.get(), g);
-      const Eigen::VectorXd direction = -(mg * least_norm_weights(g.transpose() * mg));
-      const double longest = direction.cwiseAbs().maxCoeff();
-      if (!(longest > 0)) break;  // a stationary point of every sampled piece
-      for (double t = kKinkFirstStep / longest; t * longest > 1e-12 && !next; t /= 2) {
-        ++step.trials;
-        double moved = 0;
-        std::optional<Point> trial = trial_point(at, (t * direction).cwiseProduct(here.scale), mass, shape,
-                                                 bounds, start.name, target, options, step, moved);
-        if (trial && trial->objective < at.objective * (1 - kMinDecrease)) {
-          step.step = moved / length;
-          next = std::move(trial);
-        } else if (trial) {
-          ++step.rose;
-        }
-      }
-    }
     const bool accepted = next.has_value();
     if (accepted) {
       step.structure_changed = next->stable != at.stable;

@@ -66,8 +66,7 @@ std::string design_json(const std::string& source, const DesignTarget& target, c
                         {{"rose", s.rose},
                          {"unprintable", s.unprintable},
                          {"com_outside", s.com_outside},
-                         {"degenerate", s.degenerate}}},
-                       {"kink_samples", s.kink_samples}});
+                         {"degenerate", s.degenerate}}}});
   j["history"] = history;
   return j.dump(2);
 }

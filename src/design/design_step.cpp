@@ -2,7 +2,6 @@
 #include "design_step.hpp"
 
 #include <Eigen/Cholesky>
-#include <Eigen/LU>
 #include <cmath>
 #include <map>
 #include <vector>
@@ -118,39 +117,6 @@ Eigen::VectorXd lm_step(Eigen::MatrixXd jac, const Eigen::VectorXd& residual, do
     if (!changed) break;
   }
   return d;
-}
-
-// The weights w ≥ 0, Σw = 1 minimising wᵀGw (G the sampled gradients' Gram matrix): over every support set,
-// the equality-constrained minimum where its weights are nonnegative (a handful of gradients: at most 2^7
-// small solves).
-Eigen::VectorXd least_norm_weights(const Eigen::MatrixXd& gram) {
-  const auto m = static_cast<int>(gram.rows());
-  Eigen::VectorXd best = Eigen::VectorXd::Zero(m);
-  best[0] = 1;
-  double best_value = gram(0, 0);
-  for (unsigned set = 1; set < (1u << m); ++set) {
-    std::vector<int> in;
-    for (int i = 0; i < m; ++i)
-      if (set & (1u << i)) in.push_back(i);
-    const auto k = static_cast<Eigen::Index>(in.size());
-    Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(k + 1, k + 1);
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(k + 1);
-    for (Eigen::Index a = 0; a < k; ++a) {
-      for (Eigen::Index b = 0; b < k; ++b)
-        kkt(a, b) = gram(in[static_cast<std::size_t>(a)], in[static_cast<std::size_t>(b)]);
-      kkt(a, k) = kkt(k, a) = 1;
-    }
-    rhs[k] = 1;
-    const Eigen::FullPivLU<Eigen::MatrixXd> lu(kkt);
-    if (!lu.isInvertible()) continue;
-    const Eigen::VectorXd sol = lu.solve(rhs);
-    if ((sol.head(k).array() < 0).any()) continue;
-    Eigen::VectorXd w = Eigen::VectorXd::Zero(m);
-    for (Eigen::Index a = 0; a < k; ++a) w[in[static_cast<std::size_t>(a)]] = sol[a];
-    const double value = w.dot(gram * w);
-    if (value < best_value) best_value = value, best = w;
-  }
-  return best;
 }
 
 }  // namespace repose::detail

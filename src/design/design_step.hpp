@@ -1,5 +1,5 @@
-// The linear algebra of a design step (design.cpp): the shape's Sobolev metric, the Levenberg–Marquardt
-// step with its move bounds as an active set, and the least-norm convex combination of sampled gradients.
+// The linear algebra of a design step (design.cpp): the shape's Sobolev metric and the Levenberg–Marquardt
+// step with its move bounds as an active set.
 #pragma once
 
 #include <Eigen/Core>
@@ -21,8 +21,5 @@ Eigen::MatrixXd apply_inverse(const Metric* metric, Eigen::MatrixXd t);
 // The Levenberg–Marquardt step in scaled (dimensionless) variables (see design_step.cpp).
 Eigen::VectorXd lm_step(Eigen::MatrixXd jac, const Eigen::VectorXd& residual, double lambda, const Point& at,
                         const Bounds& bounds, ShapeFreedom shape, double length, const Metric* metric);
-
-// The weights w ≥ 0, Σw = 1 minimising wᵀGw.
-Eigen::VectorXd least_norm_weights(const Eigen::MatrixXd& gram);
 
 }  // namespace repose::detail

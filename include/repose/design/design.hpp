@@ -47,16 +47,15 @@ struct DesignOptions {
 
 /// One iteration of the optimiser.
 struct DesignStep {
-  double objective = 0;  ///< Σ (achieved − target)² over the outcomes and the unassigned faces
-  double max_error = 0;  ///< max |achieved − target|
-  double step = 0;       ///< largest vertex or centre-of-mass move of the accepted step (× L)
-  int stable_faces = 0;  ///< of the hull after the step
-  int trials = 0;        ///< trial steps tried; the rejected ones by why:
-  int rose = 0;          ///<   the objective did not fall (a smaller step is tried next)
-  int unprintable = 0;   ///<   an edge or a face below its minimum
-  int com_outside = 0;   ///<   the centre of mass could not be kept com_margin inside the hull
-  int degenerate = 0;    ///<   the points' hull degenerated
-  int kink_samples = 0;  ///< nearby points whose gradient was tried (no step from the point itself descended)
+  double objective = 0;            ///< Σ (achieved − target)² over the outcomes and the unassigned faces
+  double max_error = 0;            ///< max |achieved − target|
+  double step = 0;                 ///< largest vertex or centre-of-mass move of the accepted step (× L)
+  int stable_faces = 0;            ///< of the hull after the step
+  int trials = 0;                  ///< trial steps tried; the rejected ones by why:
+  int rose = 0;                    ///<   the objective did not fall (a smaller step is tried next)
+  int unprintable = 0;             ///<   an edge or a face below its minimum
+  int com_outside = 0;             ///<   the centre of mass could not be kept com_margin inside the hull
+  int degenerate = 0;              ///<   the points' hull degenerated
   bool structure_changed = false;  ///< the set of stable faces changed (a topology change of the basins)
   bool accepted = false;  ///< a trial step lowered the objective (the last iteration of a stalled design: no)
 };
