@@ -87,7 +87,7 @@ DesignResult design_quasi_static(const Particle& start, DesignTarget target, con
   const ShapeFreedom shape = options.freedom.shape;
   // With a fixed shape the centre of mass is simply the variable; MassModel matters when the shape moves.
   const MassModel mass = shape != ShapeFreedom::none ? options.mass : MassModel::fixed;
-  std::vector<Vec3> planes = detail::face_planes(start.hull, Vec3::Zero());
+  std::vector<Vec3> planes = detail::face_planes(start.hull);
   Bounds bounds{options.com_margin * length,
                 options.max_vertex_move * length,
                 std::min(options.min_edge * length, shortest_edge(start.hull)),
@@ -134,8 +134,11 @@ DesignResult design_quasi_static(const Particle& start, DesignTarget target, con
     const Eigen::VectorXd& residual = sys.residual;
     const Eigen::VectorXd& scale = sys.scale;
     const std::unique_ptr<Metric> metric = shape_metric(from, shape, options.smoothing, length);
+    // λ's first value: 1e-3 of the largest diagonal of JM⁻¹Jᵀ (a flat start, J = 0, still gets a positive
+    // one, so that the solve stays defined).
     if (lam < 0)
-      lam = 1e-3 * (sys.jac * apply_inverse(metric.get(), sys.jac.transpose())).diagonal().maxCoeff();
+      lam = std::max(
+          1e-3 * (sys.jac * apply_inverse(metric.get(), sys.jac.transpose())).diagonal().maxCoeff(), 1e-12);
     // The trials move every variable together first; if none lowers the objective, the centre of mass alone,
     // then the shape alone (a block step: on a fine hull the joint least-norm step is mostly the vertices',
     // whose many changes of structure can defeat it where the centre of mass's share alone would descend).

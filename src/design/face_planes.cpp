@@ -8,10 +8,10 @@
 
 namespace repose::detail {
 
-std::vector<Vec3> face_planes(const ConvexHull& hull, const Vec3& origin) {
+std::vector<Vec3> face_planes(const ConvexHull& hull) {
   std::vector<Vec3> out;
   out.reserve(hull.faces.size());
-  for (const HullFace& f : hull.faces) out.push_back(f.normal / (f.offset - f.normal.dot(origin)));
+  for (const HullFace& f : hull.faces) out.push_back(f.normal / f.offset);
   return out;
 }
 

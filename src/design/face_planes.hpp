@@ -14,8 +14,8 @@
 
 namespace repose::detail {
 
-// Each face's p_f in the frame whose origin is `origin` (inside the hull).
-std::vector<Vec3> face_planes(const ConvexHull& hull, const Vec3& origin);
+// Each face's p_f (the hull's frame, its origin inside: every offset > 0).
+std::vector<Vec3> face_planes(const ConvexHull& hull);
 
 // The vertices of the polytope ∩_f {p_f·x ≤ 1}: the facets of the hull of the points p_f, each facet
 // m·p = c giving the vertex m / c. Nothing if the planes do not bound a polytope around the origin. A plane

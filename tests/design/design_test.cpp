@@ -116,6 +116,49 @@ TEST(DesignQuasiStatic, CubeAndBinomialPrismMeetTheirTargetsBySampledDrops) {
   }
 }
 
+// A fine hull moves as a smooth deformation (the Sobolev metric, DesignOptions::smoothing): a 362-vertex
+// ellipsoid designed for 0.35 / 0.65 on ±z (every face to the nearer pole) reaches the tolerance; with every
+// vertex moving on its own (smoothing 0) the same design stalls at 6e-4, its tiny faces folding at every
+// step. And the block steps on such a hull (the centre of mass alone when the joint step fails) are part of
+// it.
+TEST(DesignQuasiStatic, AFineHullMovesAsASmoothDeformation) {
+  DesignOptions options;
+  options.outcome_angle = std::numbers::pi / 2;
+  const DesignTarget target = parse_design_target("[[[0,0,1],0.35],[[0,0,-1],0.65]]", "poles");
+  const Particle ellipsoid = load_particle("ellipsoid:a=1,b=0.8,c=0.6,n=6", 1.0);
+  ASSERT_GT(ellipsoid.hull.vertices.size(), 300u);
+  const DesignResult r = design_quasi_static(ellipsoid, target, options);
+  EXPECT_TRUE(r.reached()) << r.stop << " " << r.max_error();
+  options.smoothing = 0;
+  const DesignResult rough = design_quasi_static(ellipsoid, target, options);
+  EXPECT_GT(rough.max_error(), 2 * options.tolerance) << rough.stop;
+}
+
+// The printability bounds hold: with every face at least 0.15·L² the pentagonal prism's 1/16 sides cannot
+// shrink as the binomial target needs, so the design stops short of it — and no face of the result is
+// smaller than the bound (the start's smallest face is larger, so the bound is the option's).
+TEST(DesignQuasiStatic, TheMinimumFaceBoundHolds) {
+  std::vector<Vec3> normals;
+  for (int k = 0; k < 5; ++k) {
+    const double a = 2 * std::numbers::pi * (0.1 + k / 5.0);
+    normals.emplace_back(std::cos(a), std::sin(a), 0);
+  }
+  const DesignTarget target =
+      parse_design_target(normals_json(normals, {6 / 16.0, 4 / 16.0, 1 / 16.0, 1 / 16.0, 4 / 16.0}), "prism");
+  const Particle start = convex(tipped_prism());
+  DesignOptions options;
+  options.max_vertex_move = 0.3;
+  options.min_face_area = 0.15;
+  double smallest = INFINITY;
+  for (const HullFace& f : start.hull.faces) smallest = std::min(smallest, f.area);
+  ASSERT_GT(smallest, options.min_face_area * start.length * start.length);
+  const DesignResult r = design_quasi_static(start, target, options);
+  EXPECT_FALSE(r.reached());
+  const Particle design = built(r);
+  for (const HullFace& f : design.hull.faces)
+    EXPECT_GE(f.area, options.min_face_area * start.length * start.length * (1 - 1e-6));
+}
+
 // An unreachable target gets the best achievable answer, said so, in bounded time: the cube's centre of mass
 // alone cannot give 0.4 on one face and 0.12 on each other (by symmetry the four sides stay equal and moving
 // along the axis trades the bottom against the top).
