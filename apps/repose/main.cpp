@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
   const std::vector<repose::cli::Command> commands = {
       repose::cli::add_info_command(app),  repose::cli::add_settle_command(app),
       repose::cli::add_paper_command(app), repose::cli::add_poses_command(app),
-      repose::cli::add_merge_command(app),  repose::cli::add_design_command(app),
+      repose::cli::add_merge_command(app), repose::cli::add_design_command(app),
   };
   repose::cli::accept_exponent_integers(app);
   try {
