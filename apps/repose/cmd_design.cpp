@@ -1,11 +1,13 @@
 // repose design MESH|SHAPE --target FILE: the centre of mass and/or the convex hull that give a target
-// probability per outcome under quasi-static rolling (docs/inverse-design.md).
+// probability per outcome under quasi-static rolling, or under the toss (--model tossed; design_toss_cli.hpp)
+// (docs/inverse-design.md).
 #include <cmath>
 #include <iostream>
 #include <numbers>
 #include <string>
 
 #include "commands.hpp"
+#include "design_toss_cli.hpp"
 #include "format.hpp"
 #include "mesh_options.hpp"
 #include "repose/design/design.hpp"
@@ -26,6 +28,8 @@ struct DesignCliOptions {
   std::string mass = "follows";
   double outcome_angle = 30;  // degrees
   DesignOptions design;
+  std::string model = "quasi-static";
+  TossCliOptions toss;
   MeshCliOptions mesh;
   std::string out_dir;
   bool json = false;
@@ -54,6 +58,14 @@ void print_design(const DesignCliOptions& o, const DesignTarget& target, const D
       << ")\n";
   std::cout << "centre of mass " << vec(r.center_of_mass) << "; a uniform solid's " << vec(r.centroid)
             << " (offset " << num((r.center_of_mass - r.centroid).norm()) << ")\n";
+}
+
+// design.obj, design.stl and design.json into `dir` (if one was given).
+void write_design(const std::string& dir, const DesignResult& r, const std::string& json) {
+  if (dir.empty()) return;
+  write_obj(r.mesh, dir + "/design.obj");
+  write_stl(r.mesh, dir + "/design.stl");
+  write_file_atomically(dir + "/design.json", json);
 }
 
 }  // namespace
@@ -96,28 +108,52 @@ Command add_design_command(CLI::App& app) {
   sub->add_option("--tolerance", opts->design.tolerance,
                   "Done when every outcome is within this of its target (default 1e-4)");
   sub->add_option("--iterations", opts->design.max_iterations, "At most this many iterations (default 200)");
+  sub->add_option(
+         "--model", opts->model,
+         "quasi-static (exact rolling probabilities; default) or tossed (the dynamic model's landings "
+         "under the toss given by the options below, from the quasi-static design)")
+      ->check(CLI::IsMember({"quasi-static", "tossed"}));
+  add_toss_options(*sub, opts->toss);
   sub->add_option("--out", opts->out_dir,
                   "Write design.obj, design.stl (the design's hull, the mesh's frame) and design.json here");
   sub->add_flag("--json", opts->json, "Print design.json on stdout instead of the summary");
   add_mesh_options(*sub, opts->mesh);
-  return {sub, [opts]() {
+  return {sub, [opts, sub]() {
             DesignCliOptions& o = *opts;
             o.design.freedom = parse_design_freedom(o.vary);
             o.design.mass = o.mass == "fixed" ? MassModel::fixed : MassModel::follows_shape;
             if (!(o.outcome_angle > 0 && o.outcome_angle <= 180))
               throw Error("--outcome-angle " + num(o.outcome_angle) + ": must be in (0, 180] degrees");
             o.design.outcome_angle = o.outcome_angle * std::numbers::pi / 180;
+            const bool tossed = o.model == "tossed";
+            TossDesignOptions toss;
+            if (tossed)
+              toss = toss_design_options(o.toss, *sub, o.design);
+            else
+              reject_toss_options(*sub);
             const std::string text = read_text_file(o.target, std::size_t{1} << 24);
             const DesignTarget target = parse_design_target(text, o.target);
             if (!o.out_dir.empty()) ensure_output_directory(o.out_dir);
-            const Particle start = load_particle(o.source, 1.0, o.mesh.resolve(false));
+            const Particle start =
+                load_particle(o.source, 1.0, o.mesh.resolve(o.toss.physics.unit_system() == UnitSystem::cgs));
+            if (tossed) {
+              const TossDesignResult r = design_for_toss(start, target, toss);
+              const std::string j = toss_design_json(o.source, target, toss, r) + "\n";
+              write_design(o.out_dir, r.design, j);
+              if (o.json) {
+                std::cout << j;
+              } else {
+                print_design(o, target, r.quasi_static_design);
+                print_toss_design(target, toss, r);
+                std::cout << "tossed design: centre of mass " << vec(r.design.center_of_mass)
+                          << "; a uniform solid's " << vec(r.design.centroid) << "\n";
+                if (!o.out_dir.empty()) std::cout << "wrote " << o.out_dir << "/design.{obj,stl,json}\n";
+              }
+              return 0;
+            }
             const DesignResult r = design_quasi_static(start, target, o.design);
             const std::string j = design_json(o.source, target, o.design, r) + "\n";
-            if (!o.out_dir.empty()) {
-              write_obj(r.mesh, o.out_dir + "/design.obj");
-              write_stl(r.mesh, o.out_dir + "/design.stl");
-              write_file_atomically(o.out_dir + "/design.json", j);
-            }
+            write_design(o.out_dir, r, j);
             if (o.json) {
               std::cout << j;
             } else {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <exception>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,9 @@ struct PhysicsOptions {
   SettleParams params;  ///< numbers are bound to their fields
   /// Vectors, choices and numbers that may be inf, by parameter name: kept as given, parsed by apply_given.
   std::map<std::string, std::string> text;
+  /// Parameters this command does not offer (an option of its own has the name): neither registered nor
+  /// applied.
+  std::set<std::string> skip;
 
   UnitSystem unit_system() const { return units == "cgs" ? UnitSystem::cgs : UnitSystem::si; }
 
@@ -53,7 +57,8 @@ inline double parse_number_or_inf(const ParamInfo& info, const std::string& opti
 inline void PhysicsOptions::apply_given(const CLI::App& sub, SettleParams& p) const {
   for (const ParamInfo& info : param_table()) {
     const std::string option = "--" + option_name(info);
-    const CLI::Option* given = info.cli == CliGroup::none ? nullptr : sub.get_option_no_throw(option);
+    const bool offered = info.cli != CliGroup::none && !skip.contains(info.name);
+    const CLI::Option* given = offered ? sub.get_option_no_throw(option) : nullptr;
     if (given == nullptr || given->count() == 0) continue;  // not an option of this command, or not given
     const auto as_text = [&] { return text.at(info.name); };
     std::visit(Overloaded{[&](double SettleParams::*m) {
@@ -72,7 +77,7 @@ inline void PhysicsOptions::apply_given(const CLI::App& sub, SettleParams& p) co
 inline void add_param_options(CLI::App& sub, PhysicsOptions& o, CliGroup group,
                               const std::map<std::string, std::string>& help = {}) {
   for (const ParamInfo& info : param_table()) {
-    if (info.cli != group) continue;
+    if (info.cli != group || o.skip.contains(info.name)) continue;
     const std::string option = "--" + option_name(info);
     const auto own = help.find(info.name);
     const std::string text = param_help(info, own == help.end() ? std::string() : own->second);

@@ -89,14 +89,18 @@ def quasi_static(particle, *, persistence=None):
 
 def design(particle, target, **options):
     """Designs the centre of mass and/or the convex hull of `particle` for a target probability per outcome
-    under quasi-static rolling (`repose design`, docs/inverse-design.md) and returns a DesignResult.
+    under quasi-static rolling, or under the toss with model="tossed" (`repose design`,
+    docs/inverse-design.md), and returns a DesignResult.
 
     `target`: a path to a JSON file, or the JSON itself as a list of [normal, probability] pairs (convex_dice's
     form), {"outcomes": [{"normal": [...], "probability": p}, ...]} or {"fair": [normals]}; normals in the
     mesh's frame. Keyword options are the command line's: vary ("vertices+center-of-mass" by default,
     "center-of-mass", "vertices", "faces", "faces+center-of-mass"), mass ("follows" or "fixed"),
     outcome_angle (degrees), com_margin, max_move, max_step, min_edge, min_face, smoothing (x L, L^2),
-    tolerance, iterations. Raises ValueError for bad input."""
+    tolerance, iterations. model="tossed" takes toss=dict(...) with drops, check_drops, seed, threads,
+    iterations (tossed estimates), velocity_max, spin_max, damping_ratio and settle()'s parameters
+    (drop_height, restitution, friction, ...); the result then has a "tossed" entry (the checks of both
+    designs on unseen drops, the history). Raises ValueError for bad input; Ctrl-C stops a tossed design."""
     import json as _json
     import os as _os
     if isinstance(target, (str, _os.PathLike)) and not str(target).lstrip().startswith(("[", "{")):

@@ -1,5 +1,5 @@
 # Type stubs of the repose package (units: the mesh's lengths, seconds, density × volume; see __init__.py).
-from typing import Any, Optional, Sequence, Union
+from typing import Any, Dict, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -93,4 +93,5 @@ def quasi_static(particle: Particle, *, persistence: Optional[float] = None) -> 
 def design(particle: Particle, target: Any, *, vary: str = "vertices+center-of-mass", mass: str = "follows",
            outcome_angle: float = 30.0, com_margin: float = 0.05, max_move: float = 0.15, max_step: float = 0.05,
            min_edge: float = 0.02, min_face: float = 0.001, smoothing: float = 0.1, tolerance: float = 1e-4,
-           iterations: int = 200) -> DesignResult: ...
+           iterations: int = 200, model: str = "quasi-static",
+           toss: Optional[Dict[str, Any]] = None) -> DesignResult: ...

@@ -1,4 +1,4 @@
-// repose.design: the quasi-static inverse design (include/repose/design/design.hpp) from Python.
+// repose.design: the inverse design (include/repose/design/design.hpp, toss_design.hpp) from Python.
 #include "repose/design/design.hpp"
 
 #include <pybind11/stl.h>
@@ -7,8 +7,10 @@
 #include <numbers>
 
 #include "bindings.hpp"
+#include "interruptible.hpp"
 #include "repose/design/design_json.hpp"
 #include "repose/design/target.hpp"
+#include "repose/design/toss_design.hpp"
 #include "repose/error.hpp"
 
 namespace repose::python {
@@ -67,20 +69,100 @@ DesignOptions design_options(const py::dict& kwargs) {
   return o;
 }
 
+// The tossed model from the `toss` dict: drops, check_drops, seed, threads, iterations, velocity_max,
+// spin_max, damping_ratio, and the settle parameters (drop_height, restitution, friction, ...).
+TossDesignOptions toss_options(const py::dict& toss, const DesignOptions& shape) {
+  TossDesignOptions o;
+  o.shape = shape;
+  StudySettings& s = o.model.settings;
+  py::dict params;
+  for (const auto& [key, value] : toss) {
+    const std::string name = py::str(key);
+    auto whole = [&](double min) {
+      double x = NAN;
+      try {
+        x = value.cast<double>();
+      } catch (const py::cast_error&) {
+      }
+      if (!(x >= min && x == std::floor(x) && x < 1.8e19))
+        throw Error("design: toss " + name + " must be a whole number >= " + std::to_string(int(min)));
+      return x;
+    };
+    auto number = [&]() {
+      double x = NAN;
+      try {
+        x = value.cast<double>();
+      } catch (const py::cast_error&) {
+      }
+      if (!(std::isfinite(x) && x >= 0))
+        throw Error("design: toss " + name + " must be a finite number >= 0");
+      return x;
+    };
+    if (name == "drops") {
+      o.model.drops = static_cast<std::uint64_t>(whole(1));
+    } else if (name == "check_drops") {
+      o.model.check_drops = static_cast<std::uint64_t>(whole(1));
+    } else if (name == "seed") {
+      s.seed = static_cast<std::uint64_t>(whole(0));
+    } else if (name == "threads") {
+      o.model.threads = static_cast<int>(whole(0));
+    } else if (name == "iterations") {
+      o.max_iterations = static_cast<int>(whole(0));
+    } else if (name == "velocity_max") {
+      s.toss.velocity_max = number();
+    } else if (name == "spin_max") {
+      s.toss.spin_max = number();
+    } else if (name == "damping_ratio") {
+      s.damping_ratio = number();
+    } else {
+      params[key] = value;
+    }
+  }
+  s.damping_given = params.contains("damping");
+  s.params = params_from(params, "design toss");
+  if (!s.damping_given) s.params.damping = 0;  // from the ratio, once each design's particle is known
+  return o;
+}
+
 py::tuple design_run(const PyParticle& p, const std::string& target_json, const std::string& target_name,
-                     const py::dict& kwargs) {
+                     py::dict kwargs) {
+  std::string model = "quasi-static";
+  py::dict toss;
+  if (kwargs.contains("model")) {
+    model = py::str(kwargs["model"]);
+    if (model != "quasi-static" && model != "tossed")
+      throw Error("design: model '" + model + "': expected quasi-static or tossed");
+    kwargs.attr("pop")("model");
+  }
+  if (kwargs.contains("toss")) {
+    if (model != "tossed") throw Error("design: toss is the tossed model's: add model=\"tossed\"");
+    toss = kwargs["toss"].cast<py::dict>();
+    kwargs.attr("pop")("toss");
+  }
   const DesignOptions options = design_options(kwargs);
   const DesignTarget target = parse_design_target(target_json, target_name);
+  const std::shared_ptr<const Particle> particle = p.model;
   DesignResult r;
-  {
+  std::string json;
+  if (model == "tossed") {
+    TossDesignOptions o = toss_options(toss, options);
+    const TossDesignResult tr = interruptible<TossDesignResult>([&](const std::atomic<bool>& cancel) {
+      o.model.cancel = &cancel;
+      return design_for_toss(*particle, target, o);
+    });
+    o.model.cancel = nullptr;
+    r = tr.design;
+    json = toss_design_json(particle->name, target, o, tr);
+  } else {
     py::gil_scoped_release release;
-    r = design_quasi_static(*p.model, target, options);
+    r = design_quasi_static(*particle, target, options);
+    json = design_json(particle->name, target, options, r);
   }
   std::vector<std::array<double, 3>> vertices;
   for (const Vec3& v : r.mesh.vertices) vertices.push_back({v.x(), v.y(), v.z()});
   std::vector<std::array<int, 3>> triangles;
   for (const Triangle& t : r.mesh.triangles) triangles.push_back({t[0], t[1], t[2]});
-  return py::make_tuple(design_json(p.model->name, target, options, r), vertices, triangles);
+  return py::make_tuple(json, vertices, triangles);
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "bindings.hpp"
+#include "interruptible.hpp"
 #include "repose/error.hpp"
 #include "repose/model/orientation.hpp"
 #include "repose/model/param_table.hpp"
@@ -29,49 +30,6 @@
 
 namespace repose::python {
 namespace {
-
-// Runs `work` on a thread of its own while the calling thread, without the GIL, wakes every 50 ms to let
-// Python handle signals: on Ctrl-C the cancel flag is set, the work stops at its next check, and the
-// KeyboardInterrupt propagates. The result or the work's exception is returned or rethrown here.
-template <class Result>
-Result interruptible(const std::function<Result(const std::atomic<bool>& cancel)>& work) {
-  std::atomic<bool> cancel{false};
-  std::optional<Result> result;
-  std::exception_ptr error;
-  std::mutex mutex;
-  std::condition_variable finished;
-  bool done = false;
-  std::thread worker([&] {
-    try {
-      result.emplace(work(cancel));
-    } catch (...) {
-      error = std::current_exception();
-    }
-    const std::lock_guard lock(mutex);
-    done = true;
-    finished.notify_one();
-  });
-  for (;;) {
-    bool over = false;
-    {
-      py::gil_scoped_release release;
-      std::unique_lock lock(mutex);
-      over = finished.wait_for(lock, std::chrono::milliseconds(50), [&] { return done; });
-    }
-    if (over) break;
-    if (PyErr_CheckSignals() != 0) {
-      cancel = true;
-      {
-        py::gil_scoped_release release;
-        worker.join();
-      }
-      throw py::error_already_set();
-    }
-  }
-  worker.join();
-  if (error) std::rethrow_exception(error);
-  return std::move(*result);
-}
 
 py::array_t<double> rows(const std::vector<std::array<double, 4>>& r, py::ssize_t width) {
   py::array_t<double> out({static_cast<py::ssize_t>(r.size()), width});

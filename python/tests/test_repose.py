@@ -337,3 +337,23 @@ def test_design_meets_a_cube_target_and_rejects_bad_options():
         repose.design(repose.Particle.shape("box:x=1,y=1,z=1"), target, max_mvoe=0.2)
     with pytest.raises(ValueError, match="sum to"):
         repose.design(repose.Particle.shape("box:x=1,y=1,z=1"), [[[0, 0, 1], 0.5]])
+
+
+def test_design_for_the_toss_reports_its_checks_and_rejects_bad_toss_options():
+    target = [[[0, 0, -1], 0.4], [[0, 0, 1], 0.12], [[1, 0, 0], 0.12], [[-1, 0, 0], 0.12], [[0, 1, 0], 0.12],
+              [[0, -1, 0], 0.12]]
+    cube = repose.Particle.shape("box:x=1,y=1,z=1")
+    d = repose.design(cube, target, model="tossed",
+                      toss=dict(drop_height=4, velocity_max=4, spin_max=4, restitution=0.1, friction=0.3,
+                                drops=200, check_drops=300, iterations=1, threads=1))
+    assert d.model == "tossed"
+    assert d.tossed["check"]["drops"] == [200, 500]
+    assert sum(d.tossed["check"]["counts"]) == 300
+    assert d.tossed["toss"]["friction"] == 0.3
+    assert d.vertices.shape[1] == 3
+    with pytest.raises(ValueError, match="drops"):
+        repose.design(cube, target, model="tossed", toss=dict(drops=0))
+    with pytest.raises(ValueError, match="frictoin"):
+        repose.design(cube, target, model="tossed", toss=dict(frictoin=0.3))
+    with pytest.raises(ValueError, match="model"):
+        repose.design(cube, target, toss=dict(drops=10))

@@ -1,6 +1,7 @@
 // design_json (design_json.hpp).
 #include "repose/design/design_json.hpp"
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <numbers>
 
@@ -20,8 +21,10 @@ std::string to_string(const DesignFreedom& freedom) {
   return out;
 }
 
-std::string design_json(const std::string& source, const DesignTarget& target, const DesignOptions& o,
-                        const DesignResult& r) {
+namespace {
+
+nlohmann::json design_object(const std::string& source, const DesignTarget& target, const DesignOptions& o,
+                             const DesignResult& r) {
   nlohmann::json j;
   j["source"] = source;
   j["target_file"] = target.source;
@@ -68,6 +71,78 @@ std::string design_json(const std::string& source, const DesignTarget& target, c
                          {"com_outside", s.com_outside},
                          {"degenerate", s.degenerate}}}});
   j["history"] = history;
+  return j;
+}
+
+nlohmann::json tossed_object(const TossedOutcomes& t) {
+  nlohmann::json j;
+  j["drops"] = {t.drops.begin, t.drops.end};
+  j["counts"] = t.counts;
+  j["probability"] = t.probability;
+  nlohmann::json ci = nlohmann::json::array();
+  for (const auto& c : t.ci95) ci.push_back({c[0], c[1]});
+  j["ci95"] = ci;
+  j["max_error"] = t.max_error;
+  j["chi_square"] = std::isfinite(t.chi_square) ? nlohmann::json(t.chi_square) : nlohmann::json("inf");
+  j["degrees_of_freedom"] = t.dof;
+  j["p_value"] = t.p_value;
+  j["all_within_ci95"] = t.all_within_ci95;
+  return j;
+}
+
+}  // namespace
+
+std::string design_json(const std::string& source, const DesignTarget& target, const DesignOptions& o,
+                        const DesignResult& r) {
+  nlohmann::json j = design_object(source, target, o, r);
+  j["model"] = "quasi-static";
+  return j.dump(2);
+}
+
+std::string toss_design_json(const std::string& source, const DesignTarget& target,
+                             const TossDesignOptions& o, const TossDesignResult& r) {
+  // The design's own keys are the quasi-static ones of its shape; "tossed" holds what it was designed for.
+  nlohmann::json j = design_object(source, target, o.shape, r.design);
+  j["model"] = "tossed";
+  j["quasi_static_design"] = design_object(source, target, o.shape, r.quasi_static_design);
+  j["quasi_static_design"].erase("source");
+  j["quasi_static_design"].erase("target_file");
+  j["quasi_static_design"].erase("options");
+  const StudySettings& s = o.model.settings;
+  nlohmann::json tossed;
+  tossed["toss"] = {
+      {"seed", s.seed},
+      {"drops", o.model.drops},
+      {"check_drops", o.model.check_drops},
+      {"gravity", s.params.gravity},
+      {"drop_height", s.params.drop_height},
+      {"velocity_max", s.toss.velocity_max},
+      {"spin_max", s.toss.spin_max},
+      {"restitution", s.params.restitution},
+      {"friction",
+       std::isfinite(s.params.friction) ? nlohmann::json(s.params.friction) : nlohmann::json("inf")},
+      {"restitution_threshold", s.params.restitution_threshold},
+      {"damping_ratio", s.damping_given ? nlohmann::json(nullptr) : nlohmann::json(s.damping_ratio)},
+      {"damping", s.damping_given ? nlohmann::json(s.params.damping) : nlohmann::json(nullptr)}};
+  tossed["stop"] = r.stop;
+  tossed["reached"] = r.reached();
+  tossed["settles"] = r.settles;
+  tossed["check"] = tossed_object(r.check);
+  tossed["check_quasi_static_design"] = tossed_object(r.check_quasi_static);
+  nlohmann::json history = nlohmann::json::array();
+  for (const TossDesignStep& step : r.history)
+    history.push_back({{"kind", step.kind},
+                       {"surrogate_target", step.surrogate},
+                       {"quasi_static", step.quasi_static},
+                       {"tossed", tossed_object(step.tossed)},
+                       {"objective", step.objective},
+                       {"inner_iterations", step.inner_iterations},
+                       {"inner_stop", step.inner_stop},
+                       {"inner_restarted", step.inner_restarted},
+                       {"accepted", step.accepted},
+                       {"jacobian_reset", step.jacobian_reset}});
+  tossed["history"] = history;
+  j["tossed"] = tossed;
   return j.dump(2);
 }
 

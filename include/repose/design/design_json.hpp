@@ -5,6 +5,7 @@
 
 #include "repose/design/design.hpp"
 #include "repose/design/target.hpp"
+#include "repose/design/toss_design.hpp"
 
 namespace repose {
 
@@ -17,5 +18,12 @@ std::string to_string(const DesignFreedom& freedom);
 /// size, and the history (each iteration's objective, error, step and rejected trials by reason).
 std::string design_json(const std::string& source, const DesignTarget& target, const DesignOptions& options,
                         const DesignResult& result);
+
+/// A tossed design's JSON text: design_json's keys for the tossed design's shape (their probabilities
+/// quasi-static), "model": "tossed", "quasi_static_design" (the starting point: the same keys), and
+/// "tossed": the toss, the stop, the settles, the checks of both designs on unseen drops (counts,
+/// probability, ci95, χ²) and the history of tossed estimates.
+std::string toss_design_json(const std::string& source, const DesignTarget& target,
+                             const TossDesignOptions& options, const TossDesignResult& result);
 
 }  // namespace repose

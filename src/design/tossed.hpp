@@ -1,0 +1,20 @@
+// The tossed estimate of a design point (tossed_outcomes.cpp), for the toss design (toss_design.cpp).
+#pragma once
+
+#include "repose/design/toss_design.hpp"
+#include "repose/poses/landscape.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace repose::detail {
+
+// `assigned`: the target with its outcomes' faces assigned to this particle's hull.
+TossedOutcomes tossed_outcomes(const Particle& particle, const RestLandscape& landscape,
+                               const DesignTarget& assigned, const TossModel& model, DropRange drops);
+
+// The estimate from its counts (per outcome, then the faces of no outcome, then the drops that did not rest)
+// and the target's probability per outcome: frequencies, Wilson intervals, Pearson's χ².
+TossedOutcomes summarise(DropRange drops, std::vector<std::uint64_t> counts, const std::vector<double>& target);
+
+}  // namespace repose::detail
