@@ -1,11 +1,11 @@
 // The tossed estimate of a design point (tossed_outcomes.cpp), for the toss design (toss_design.cpp).
 #pragma once
 
-#include "repose/design/toss_design.hpp"
-#include "repose/poses/landscape.hpp"
-
 #include <cstdint>
 #include <vector>
+
+#include "repose/design/toss_design.hpp"
+#include "repose/poses/landscape.hpp"
 
 namespace repose::detail {
 
@@ -15,6 +15,7 @@ TossedOutcomes tossed_outcomes(const Particle& particle, const RestLandscape& la
 
 // The estimate from its counts (per outcome, then the faces of no outcome, then the drops that did not rest)
 // and the target's probability per outcome: frequencies, Wilson intervals, Pearson's χ².
-TossedOutcomes summarise(DropRange drops, std::vector<std::uint64_t> counts, const std::vector<double>& target);
+TossedOutcomes summarise(DropRange drops, std::vector<std::uint64_t> counts,
+                         const std::vector<double>& target);
 
 }  // namespace repose::detail
