@@ -12,6 +12,7 @@
 #include "mesh_options.hpp"
 #include "repose/design/design.hpp"
 #include "repose/design/design_json.hpp"
+#include "repose/design/design_report.hpp"
 #include "repose/design/target.hpp"
 #include "repose/io/mesh_io.hpp"
 #include "repose/model/particle.hpp"
@@ -32,6 +33,7 @@ struct DesignCliOptions {
   TossCliOptions toss;
   MeshCliOptions mesh;
   std::string out_dir;
+  std::string html;
   bool json = false;
 };
 
@@ -116,6 +118,10 @@ Command add_design_command(CLI::App& app) {
   add_toss_options(*sub, opts->toss);
   sub->add_option("--out", opts->out_dir,
                   "Write design.obj, design.stl (the design's hull, the mesh's frame) and design.json here");
+  sub->add_option(
+      "--html", opts->html,
+      "Write a self-contained HTML report: target against achieved, the design in each rest pose, "
+      "the history (docs/reports.md)");
   sub->add_flag("--json", opts->json, "Print design.json on stdout instead of the summary");
   add_mesh_options(*sub, opts->mesh);
   return {sub, [opts, sub]() {
@@ -140,6 +146,8 @@ Command add_design_command(CLI::App& app) {
               const TossDesignResult r = design_for_toss(start, target, toss);
               const std::string j = toss_design_json(o.source, target, toss, r) + "\n";
               write_design(o.out_dir, r.design, j);
+              if (!o.html.empty())
+                write_file_atomically(o.html, design_report_html(o.source, target, o.design, r.design, j));
               if (o.json) {
                 std::cout << j;
               } else {
@@ -154,6 +162,8 @@ Command add_design_command(CLI::App& app) {
             const DesignResult r = design_quasi_static(start, target, o.design);
             const std::string j = design_json(o.source, target, o.design, r) + "\n";
             write_design(o.out_dir, r, j);
+            if (!o.html.empty())
+              write_file_atomically(o.html, design_report_html(o.source, target, o.design, r, j));
             if (o.json) {
               std::cout << j;
             } else {

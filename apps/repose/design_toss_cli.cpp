@@ -144,10 +144,13 @@ void print_toss_design(const DesignTarget& target, const TossDesignOptions& opti
             << " tossed estimates ("
             << (r.stop == "converged"
                     ? "as close as a typical sample of the target: chi-square below its median"
-                : r.stop == "stalled" ? "stalled: no halved step lowered the tossed error"
+                : r.stop == "stalled" ? "stalled: no shorter step lowered the tossed error"
                                       : "--toss-iterations reached")
             << "); every target inside its interval on the check drops: "
-            << (tossed.all_within_ci95 ? "yes" : "no") << "; " << r.settles << " tossed settles\n";
+            << (tossed.all_within_ci95 ? "yes" : "no")
+            << ", in its simultaneous interval (Bonferroni over the " << target.outcomes.size()
+            << " outcomes): " << (tossed.all_within_simultaneous ? "yes" : "no") << "; " << r.settles
+            << " tossed settles\n";
 }
 
 }  // namespace repose::cli

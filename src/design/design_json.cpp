@@ -87,6 +87,7 @@ nlohmann::json tossed_object(const TossedOutcomes& t) {
   j["degrees_of_freedom"] = t.dof;
   j["p_value"] = t.p_value;
   j["all_within_ci95"] = t.all_within_ci95;
+  j["all_within_simultaneous_ci95"] = t.all_within_simultaneous;
   return j;
 }
 

@@ -1,6 +1,7 @@
 // The tossed landings of a design by outcome, with their intervals and χ² (toss_design.hpp).
 #include <algorithm>
 #include <boost/math/distributions/chi_squared.hpp>
+#include <boost/math/distributions/normal.hpp>
 #include <cmath>
 
 #include "repose/design/toss_design.hpp"
@@ -52,6 +53,12 @@ TossedOutcomes summarise(DropRange drops, std::vector<std::uint64_t> counts,
   std::uint64_t landed = 0;
   for (std::size_t k = 0; k < outcomes; ++k) landed += out.counts[k];
   bool within = out.counts[outcomes] == 0 && out.counts[outcomes + 1] == 0;
+  bool within_all = within;
+  // The normal quantile at 1 − 0.025/outcomes: Bonferroni's two-sided 95 % over the outcomes.
+  const double z_all =
+      outcomes > 0 ? boost::math::quantile(boost::math::complement(boost::math::normal_distribution<double>(),
+                                                                   0.025 / static_cast<double>(outcomes)))
+                   : 1.959963984540054;
   for (std::size_t k = 0; k < out.counts.size(); ++k) {
     out.probability.push_back(static_cast<double>(out.counts[k]) / n);
     out.ci95.push_back(wilson_interval(out.counts[k], drops.size()));
@@ -59,6 +66,8 @@ TossedOutcomes summarise(DropRange drops, std::vector<std::uint64_t> counts,
     const double t = target[k];
     out.max_error = std::max(out.max_error, std::abs(out.probability[k] - t));
     within = within && out.ci95[k][0] <= t && t <= out.ci95[k][1];
+    const auto all = wilson_interval(out.counts[k], drops.size(), z_all);
+    within_all = within_all && all[0] <= t && t <= all[1];
     const double expected = t * static_cast<double>(landed);
     if (expected > 0) {
       out.chi_square += std::pow(static_cast<double>(out.counts[k]) - expected, 2) / expected;
@@ -67,6 +76,7 @@ TossedOutcomes summarise(DropRange drops, std::vector<std::uint64_t> counts,
     }
   }
   out.all_within_ci95 = within;
+  out.all_within_simultaneous = within_all;
   out.dof = static_cast<int>(outcomes) - 1;
   if (out.dof >= 1 && landed > 0) {
     out.p_value = std::isfinite(out.chi_square)

@@ -1,7 +1,9 @@
 #include "repose/output/html.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <nlohmann/json.hpp>
@@ -10,6 +12,8 @@
 #include "near_wall.hpp"
 #include "repose/error.hpp"
 #include "repose/output/report.hpp"
+#include "repose/poses/landscape.hpp"
+#include "repose/poses/rest_poses.hpp"
 
 namespace repose {
 
@@ -132,6 +136,39 @@ std::string poses_report_html(const Particle& particle, const PosesStudy& study)
                {"shape", shape_json(particle)},
                {"study", json::parse(poses_json(study))}};
   return html_page("repose poses: " + study.source, data);
+}
+
+std::string design_report_page(const std::string& title, const Particle& design,
+                               const std::vector<int>& face_outcome, const std::string& design_json) {
+  if (face_outcome.size() != design.hull.faces.size())
+    throw Error("report: the design's outcomes do not match its hull faces");
+  const RestLandscape landscape = compute_rest_landscape(design);
+  const RestPoseCatalog catalog = catalog_rest_poses(design, landscape, 0);  // every stable face its own pose
+  std::vector<const RestPose*> order;
+  for (const RestPose& p : catalog.poses) order.push_back(&p);
+  // By outcome (those of no outcome last), then the most likely first.
+  auto outcome = [&](const RestPose* p) {
+    const int o = face_outcome[static_cast<std::size_t>(p->face)];
+    return o < 0 ? INT32_MAX : o;
+  };
+  std::stable_sort(order.begin(), order.end(), [&](const RestPose* a, const RestPose* b) {
+    if (outcome(a) != outcome(b)) return outcome(a) < outcome(b);
+    return a->quasi_static_probability > b->quasi_static_probability;
+  });
+  json poses = json::array();
+  for (const RestPose* p : order)
+    poses.push_back(
+        {{"face", p->face},
+         {"outcome", face_outcome[static_cast<std::size_t>(p->face)]},
+         {"down_normal_body", {p->down_normal_body.x(), p->down_normal_body.y(), p->down_normal_body.z()}},
+         {"com_height", p->com_height},
+         {"quasi_static_probability", p->quasi_static_probability}});
+  const json data = {{"kind", "design"},
+                     {"title", title},
+                     {"shape", shape_json(design)},
+                     {"design", json::parse(design_json)},
+                     {"poses", poses}};
+  return html_page("repose design: " + title, data);
 }
 
 std::string paper_report_html(const std::vector<SettleRecording>& cases,

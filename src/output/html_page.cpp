@@ -88,7 +88,7 @@ std::string html_page(const std::string& title, const nlohmann::json& data) {
   page += script_body("three/three.module.min.js");
   page += "</script>\n<script type=\"module\">\n";
   for (const char* part : {"html/common.js", "html/stage.js", "html/settle.js", "html/poses.js",
-                           "html/paper.js", "html/main.js"})
+                           "html/design.js", "html/paper.js", "html/main.js"})
     page += script_body(part);
   page += "</script>\n";
   // The libraries' licences (MIT) travel with every copy of their code.

@@ -102,6 +102,14 @@ TEST(TossedOutcomes, ChiSquareAndIntervalsAgainstValuesWorkedByHand) {
   const TossedOutcomes elsewhere = detail::summarise({10, 112}, {30, 50, 20, 1, 1}, target);
   EXPECT_EQ(elsewhere.chi_square, 0);
   EXPECT_FALSE(elsewhere.all_within_ci95);
+  EXPECT_FALSE(elsewhere.all_within_simultaneous);
+  // Simultaneous intervals (z = 2.394, the normal quantile at 1 − 0.025/3, against 1.960): 40 of 100 has
+  // the 95 % Wilson interval [0.3094, 0.4980] and the simultaneous one [0.2912, 0.5196] (worked by hand:
+  // centre (p + z²/2n)/(1 + z²/n), half-width z·sqrt(p(1 − p)/n + z²/4n²)/(1 + z²/n)); a target 0.30 is
+  // outside the first and inside the second. The other two (0.48 for 40, 0.22 for 20 of 100) are inside both.
+  const TossedOutcomes wide = detail::summarise({0, 100}, {40, 40, 20, 0, 0}, {0.30, 0.48, 0.22});
+  EXPECT_FALSE(wide.all_within_ci95);
+  EXPECT_TRUE(wide.all_within_simultaneous);
   EXPECT_DOUBLE_EQ(elsewhere.probability[4], 1.0 / 102);
   EXPECT_EQ(elsewhere.ci95[0], wilson_interval(30, 102));
   // A landing on an outcome whose target is 0 rejects outright.

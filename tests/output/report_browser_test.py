@@ -1,4 +1,4 @@
-"""The three kinds of HTML report opened as a person would: in headless Chromium (Debian's chromium and
+"""The four kinds of HTML report opened as a person would: in headless Chromium (Debian's chromium and
 chromium-driver, driven by python3-selenium).
 
 Each report is made by the real command line (REPOSE_CLI), opened from a file:// address with the network
@@ -153,6 +153,43 @@ def test_poses_report_shows_every_pose(browser):
     move_slider(browser, "input.pose-slider", Keys.END)
     after = assert_drawn(browser, path, "poses-last.png")
     assert after != before, "moving the pose slider did not change the picture"
+    assert [e for e in browser.get_log("browser") if e["level"] == "SEVERE"] == []
+
+
+CUBE_TARGET = ("[[[0,0,-1],0.4],[[0,0,1],0.12],[[1,0,0],0.12],[[-1,0,0],0.12],[[0,1,0],0.12],"
+               "[[0,-1,0],0.12]]")
+
+
+def test_design_report_shows_target_achieved_poses_and_history(browser):
+    os.makedirs(OUT, exist_ok=True)
+    with open(os.path.join(OUT, "cube-target.json"), "w") as f:
+        f.write(CUBE_TARGET)
+    path = make("design.html", "design", "box:x=1,y=1,z=1", "--target", "cube-target.json", "--html",
+                "design.html")
+    open_report(browser, path)
+    before = assert_drawn(browser, path, "design-first.png")
+    text = browser.execute_script("return document.body.innerText")
+    assert "reached" in text and "Target and achieved" in text
+    # Six outcomes and the "other" row, three bars each (target, start, design).
+    assert len(browser.find_elements(By.CSS_SELECTOR, "svg.bars rect")) == 3 * 7
+    rows = browser.find_elements(By.CSS_SELECTOR, "table.poses tbody tr")
+    # The design rests on faces of every outcome (a folded side can rest on either of its two triangles).
+    assert {r.find_elements(By.TAG_NAME, "td")[0].text for r in rows} == {f"outcome {k}" for k in range(1, 7)}
+    assert len(browser.find_elements(By.CSS_SELECTOR, ".uplot")) == 1  # the history
+    move_slider(browser, "input.pose-slider", Keys.END)
+    after = assert_drawn(browser, path, "design-last.png")
+    assert after != before, "moving the pose slider did not change the picture"
+    # A tossed design: both designs' checks with intervals, and the tossed history too.
+    path = make("design-tossed.html", "design", "box:x=1,y=1,z=1", "--target", "cube-target.json", "--model",
+                "tossed", "--drop-height", "4", "--velocity-max", "3", "--spin-max", "3", "--restitution", "0.1",
+                "--friction", "0.3", "--drops", "200", "--check-drops", "200", "--toss-iterations", "1",
+                "--html", "design-tossed.html")
+    open_report(browser, path)
+    assert_drawn(browser, path, "design-tossed.png")
+    text = browser.execute_script("return document.body.innerText")
+    for label in ("never saw", "95 % interval", "The toss", "tossed design"):
+        assert label in text, f"{path}: no '{label}' in the page"
+    assert len(browser.find_elements(By.CSS_SELECTOR, ".uplot")) == 2
     assert [e for e in browser.get_log("browser") if e["level"] == "SEVERE"] == []
 
 

@@ -6,9 +6,10 @@
 // has the same orientation and toss whatever the shape; an estimate of n drops uses drops 0 .. n−1, so that
 // smaller estimates are prefixes of larger ones). The optimiser works in the space of quasi-static
 // probabilities: each iterate is a quasi-static design (design.hpp) from the start toward a surrogate target
-// q, and q is moved by quasi-Newton steps on the tossed residual, the Jacobian d(tossed)/dq first by finite
-// differences, then by Broyden's updates (output space mapping). Each estimate's size follows the residual:
-// its standard error about a third of it, up to `drops`.
+// q, and q is moved by quasi-Newton steps on the tossed residual (output space mapping): the Jacobian
+// d(tossed)/dq by finite differences at the quasi-static design, then Broyden's updates; each step's length
+// by a secant line search along it; at most 0.1 of change in any q per step. Each estimate's size follows the
+// residual: its standard error about a third of it, up to `drops`.
 #pragma once
 
 #include <array>
@@ -53,13 +54,16 @@ struct TossedOutcomes {
   int dof = 0;
   double p_value = 1;
   bool all_within_ci95 = false;  ///< every outcome's target inside its interval, and no drop elsewhere
+  /// The same with simultaneous intervals: Wilson's at 1 − 0.05/outcomes each (Bonferroni), so that all of
+  /// them hold together with probability ≥ 95 % (five 95 % intervals all hold only ~77 % of the time).
+  bool all_within_simultaneous = false;
 };
 
 struct TossDesignOptions {
   DesignOptions shape;  ///< what may change and its bounds: every quasi-static design uses them
   TossModel model;
-  int max_iterations = 12;         ///< quasi-Newton steps (each one tossed estimate; halvings count as steps)
-  int max_halvings = 2;            ///< a step that does not lower the tossed objective is halved this often
+  int max_iterations = 12;  ///< quasi-Newton steps (each trial one tossed estimate; retries count)
+  int max_retries = 2;      ///< a step that does not lower the tossed objective is tried shorter this often
   std::uint64_t min_drops = 1000;  ///< the smallest estimate (while the residual is large)
   /// The finite differences' change of an outcome's quasi-static probability (the first Jacobian).
   double difference_step = 0.05;
@@ -94,7 +98,7 @@ struct TossDesignResult {
   /// quasi-static design.
   TossedOutcomes check, check_quasi_static;
   std::uint64_t settles = 0;  ///< tossed drops simulated, the checks included
-  std::string stop;           ///< "converged", "iterations" or "stalled" (no halved step lowered it)
+  std::string stop;           ///< "converged", "iterations" or "stalled" (no shorter step lowered it)
   bool reached() const { return stop == "converged"; }
 };
 

@@ -9,6 +9,8 @@
 //   poses   every rest pose drawn at rest, its probability with the 95 % interval beside the quasi-static
 //           probability (a bar chart), the counts and the run's settings.
 //   paper   the comparison table with the paper, every figure, and the player of each case.
+//   design  an inverse design: target against achieved per outcome, the design in each rest pose, its
+//   history.
 //
 // Lengths are in the particle's length unit, times in the run's time unit (whatever SettleParams::gravity
 // fixes), exactly as in the JSON summary and the time series.
@@ -49,6 +51,12 @@ std::string settle_report_html(const SettleRecording& run);
 
 /// The report of a rest-pose study of `particle` (the particle the study was made of).
 std::string poses_report_html(const Particle& particle, const PosesStudy& study);
+
+/// The report of an inverse design (`repose design --html`; repose/design/design_report.hpp builds its
+/// arguments): `design` the designed particle, `face_outcome` the outcome of each of its hull faces (−1:
+/// none), `title` its heading and `design_json` its design.json text (target, achieved, history, checks).
+std::string design_report_page(const std::string& title, const Particle& design,
+                               const std::vector<int>& face_outcome, const std::string& design_json);
 
 /// A row of the paper's comparison table, as text (already formatted by scripts/plot_paper.py).
 struct PaperTableRow {
