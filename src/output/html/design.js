@@ -127,42 +127,20 @@ REPORTS.design = (THREE, app) => {
 
   // The design in each rest pose.
   const poses = DATA.poses;
-  const canvas = el("canvas", { width: 720, height: 400, class: "view", "data-role": "view" });
-  const slider = el("input", { type: "range", min: 0, max: Math.max(0, poses.length - 1), value: 0, step: 1, class: "pose-slider", "aria-label": "pose" });
-  const caption = el("span", { class: "clock" });
-  app.append(el("h2", {}, "The design at rest"), el("div", { class: "player" }, canvas, el("div", { class: "controls" }, el("span", {}, "pose "), slider, caption)));
-  const stage = new Stage(THREE, canvas, DATA.shape);
-  stage.view.elevation = 0.3;
-  stage.view.distance = 3.2 * DATA.shape.length;
   const outcomeName = (p) => (p.outcome >= 0 ? `outcome ${p.outcome + 1}` : "no outcome");
-  const place = (p) => {
-    const at = restPlacement(THREE, p);
-    stage.setPose(at.q, at.com, restContacts(DATA.shape, at));
-  };
-  const select = (i) => {
-    const p = poses[i];
-    place(p);
-    stage.render();
-    caption.textContent = `${outcomeName(p)}: hull face ${p.face}, quasi-static probability ${percent(p.quasi_static_probability)}`;
-  };
-  slider.addEventListener("input", () => select(Number(slider.value)));
-  const poseRows = poses.map((p, i) => {
-    let picture = "—";
-    if (i < 48) {
-      place(p);
-      stage.render();
-      picture = el("img", { src: canvas.toDataURL("image/png"), alt: `the design resting on face ${p.face}`, class: "thumb" });
-    }
-    return el(
+  const viewer = restPoseViewer(THREE, DATA.shape, poses, (p) => `${outcomeName(p)}: hull face ${p.face}, quasi-static probability ${percent(p.quasi_static_probability)}`);
+  app.append(el("h2", {}, "The design at rest"), viewer.element);
+  const poseRows = poses.map((p, i) =>
+    el(
       "tr",
-      { onclick: () => { slider.value = i; select(i); canvas.scrollIntoView({ behavior: "smooth" }); } },
+      { onclick: viewer.show(i) },
       el("td", {}, outcomeName(p)),
-      el("td", {}, picture),
+      el("td", {}, i < 48 ? viewer.thumbnail(i, `the design resting on face ${p.face}`) : "—"),
       el("td", {}, p.face),
       el("td", {}, percent(p.quasi_static_probability)),
       el("td", {}, fmt(p.com_height, 6)),
-    );
-  });
+    ),
+  );
   app.append(
     el("table", { class: "poses" }, el("thead", {}, el("tr", {}, ...["outcome", "at rest", "hull face", "quasi-static", "COM height"].map((h) => el("th", {}, h)))), el("tbody", {}, ...poseRows)),
     el(
@@ -172,7 +150,7 @@ REPORTS.design = (THREE, app) => {
         `an insert or cavity must move it by [${d.center_of_mass_offset.map((c) => fmt(c, 5)).join(", ")}]. Hull: ${d.hull.vertices} vertices, L = ${fmt(d.characteristic_length)}.`,
     ),
   );
-  if (poses.length) select(0);
+  if (poses.length) viewer.select(0);
 
   // The history.
   app.append(el("h2", {}, "Optimisation"));

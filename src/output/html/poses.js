@@ -72,6 +72,37 @@ function probabilityChart(poses, method) {
   return el("div", {}, chart, legend, note);
 }
 
+// A view of the particle at rest in each pose of `poses` (each with down_normal_body and com_height): a large
+// canvas with a slider through them, `describe(pose, i)` as its caption; `thumbnail(i)` renders pose i once
+// by the same view and returns its picture (the view is left on pose i: call select afterwards).
+function restPoseViewer(THREE, shape, poses, describe) {
+  const canvas = el("canvas", { width: 720, height: 400, class: "view", "data-role": "view" });
+  const slider = el("input", { type: "range", min: 0, max: Math.max(0, poses.length - 1), value: 0, step: 1, class: "pose-slider", "aria-label": "pose" });
+  const caption = el("span", { class: "clock" });
+  const element = el("div", { class: "player" }, canvas, el("div", { class: "controls" }, el("span", {}, "pose "), slider, caption));
+  const stage = new Stage(THREE, canvas, shape);
+  stage.view.elevation = 0.3;
+  stage.view.distance = 3.2 * shape.length;
+  const place = (p) => {
+    const at = restPlacement(THREE, p);
+    stage.setPose(at.q, at.com, restContacts(shape, at));
+    stage.render();
+  };
+  const select = (i) => {
+    slider.value = i;
+    place(poses[i]);
+    caption.textContent = describe(poses[i], i);
+  };
+  const thumbnail = (i, alt) => {
+    place(poses[i]);
+    return el("img", { src: canvas.toDataURL("image/png"), alt, class: "thumb" });
+  };
+  // A table row's click shows its pose in the large view.
+  const show = (i) => () => { select(i); canvas.scrollIntoView({ behavior: "smooth" }); };
+  slider.addEventListener("input", () => select(Number(slider.value)));
+  return { element, select, thumbnail, show };
+}
+
 function settingsTable(study) {
   const rows = [];
   const show = (v) => (v === null ? "—" : typeof v === "object" ? JSON.stringify(v) : typeof v === "number" ? fmt(v, 6) : String(v));
@@ -94,40 +125,18 @@ REPORTS.poses = (THREE, app) => {
   );
 
   // The selected pose, large, with a slider through all of them.
-  const canvas = el("canvas", { width: 720, height: 400, class: "view", "data-role": "view" });
-  const slider = el("input", { type: "range", min: 0, max: Math.max(0, poses.length - 1), value: 0, step: 1, class: "pose-slider", "aria-label": "pose" });
-  const caption = el("span", { class: "clock" });
-  app.append(el("div", { class: "player" }, canvas, el("div", { class: "controls" }, el("span", {}, "pose "), slider, caption)));
-  const stage = new Stage(THREE, canvas, DATA.shape);
-  stage.view.elevation = 0.3;
-  stage.view.distance = 3.2 * DATA.shape.length;
-  const place = (p) => {
-    const at = restPlacement(THREE, p);
-    stage.setPose(at.q, at.com, restContacts(DATA.shape, at));
-  };
-  const select = (i) => {
-    const p = poses[i];
-    place(p);
-    stage.render();
-    caption.textContent = `${p.pose} (${i + 1} of ${poses.length} by frequency): hull face ${p.face}, probability ${percent(p.probability)} [${percent(p.ci95[0])}, ${percent(p.ci95[1])}], quasi-static ${percent(p.quasi_static_probability)}`;
-  };
-  slider.addEventListener("input", () => select(Number(slider.value)));
+  const viewer = restPoseViewer(THREE, DATA.shape, poses, (p, i) =>
+    `${p.pose} (${i + 1} of ${poses.length} by frequency): hull face ${p.face}, probability ${percent(p.probability)} [${percent(p.ci95[0])}, ${percent(p.ci95[1])}], quasi-static ${percent(p.quasi_static_probability)}`);
+  app.append(viewer.element);
 
   app.append(el("h2", {}, "Probabilities"), probabilityChart(poses, study.method));
 
   // The table, with a picture of each pose (rendered once by the same view).
-  const thumbs = [];
   const rows = poses.map((p, i) => {
-    let picture = "—";
-    if (i < 48) {
-      place(p);
-      stage.render();
-      picture = el("img", { src: canvas.toDataURL("image/png"), alt: `pose ${p.pose} at rest`, class: "thumb" });
-      thumbs.push(picture);
-    }
+    const picture = i < 48 ? viewer.thumbnail(i, `pose ${p.pose} at rest`) : "—";
     return el(
       "tr",
-      { onclick: () => { slider.value = i; select(i); canvas.scrollIntoView({ behavior: "smooth" }); } },
+      { onclick: viewer.show(i) },
       el("td", {}, p.pose),
       el("td", {}, picture),
       el("td", {}, p.faces.join(", ")),
@@ -147,5 +156,5 @@ REPORTS.poses = (THREE, app) => {
     el("h2", {}, "Settings and counts"),
     settingsTable(study),
   );
-  if (poses.length) select(0);
+  if (poses.length) viewer.select(0);
 };
