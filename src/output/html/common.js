@@ -99,6 +99,32 @@ function lineChart(parent, { title, xLabel, yLabel, x, series, steps = false, yV
   return new uPlot(options, [x, ...series.map((s) => s.values)], parent);
 }
 
+// An SVG element with attributes (and text).
+function svgNode(tag, attributes, text) {
+  const node = document.createElementNS("http://www.w3.org/2000/svg", tag);
+  for (const [k, v] of Object.entries(attributes)) node.setAttribute(k, v);
+  if (text !== undefined) node.textContent = text;
+  return node;
+}
+
+// The frame of a bar chart of probabilities up to `highest` over `bands` categories: the SVG with its grid
+// and percent ticks, the y of a probability, and the geometry the bars are placed by.
+function probabilityBars(highest, bands, label) {
+  const step = [0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.25].find((s) => highest / s <= 5) || 0.25;
+  const ticks = Math.ceil(highest / step);
+  const top = ticks * step;
+  const W = 760, H = 260, left = 48, bottom = 36;
+  const plotW = W - left - 10, plotH = H - bottom - 26;
+  const yOf = (p) => 10 + plotH * (1 - p / top);
+  const chart = svgNode("svg", { viewBox: `0 0 ${W} ${H}`, class: "bars", role: "img", "aria-label": label });
+  for (let k = 0; k <= ticks; ++k) {
+    const p = k * step;
+    chart.append(svgNode("line", { x1: left, x2: W - 10, y1: yOf(p), y2: yOf(p), class: "gridline" }));
+    chart.append(svgNode("text", { x: left - 6, y: yOf(p) + 4, "text-anchor": "end" }, (100 * p).toFixed(step < 0.01 ? 1 : 0) + " %"));
+  }
+  return { chart, yOf, left, band: plotW / Math.max(1, bands), W, H, bottom, plotW };
+}
+
 // A status line for errors of the page itself (the test reads the console; a person reads this).
 function reportProblem(error) {
   console.error(error);

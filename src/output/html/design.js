@@ -4,28 +4,10 @@
 
 // Bars (SVG): per outcome, the target and what each design achieved, tossed ones with their interval.
 function outcomeChart(rows, series) {
-  const ns = "http://www.w3.org/2000/svg";
-  const svg = (tag, attributes, text) => {
-    const node = document.createElementNS(ns, tag);
-    for (const [k, v] of Object.entries(attributes)) node.setAttribute(k, v);
-    if (text !== undefined) node.textContent = text;
-    return node;
-  };
+  const svg = svgNode;
   const values = rows.flatMap((r) => series.flatMap((s) => [r[s.key], ...(s.ci ? [r[s.ci][1]] : [])]));
   const highest = Math.max(0.01, ...values.filter((v) => typeof v === "number"));
-  const step = [0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.25].find((s) => highest / s <= 5) || 0.25;
-  const ticks = Math.ceil(highest / step);
-  const top = ticks * step;
-  const W = 760, H = 260, left = 48, bottom = 36;
-  const plotW = W - left - 10, plotH = H - bottom - 26;
-  const band = plotW / Math.max(1, rows.length);
-  const yOf = (p) => 10 + plotH * (1 - p / top);
-  const chart = svg("svg", { viewBox: `0 0 ${W} ${H}`, class: "bars", role: "img", "aria-label": "target and achieved probability of each outcome" });
-  for (let k = 0; k <= ticks; ++k) {
-    const p = k * step;
-    chart.append(svg("line", { x1: left, x2: W - 10, y1: yOf(p), y2: yOf(p), class: "gridline" }));
-    chart.append(svg("text", { x: left - 6, y: yOf(p) + 4, "text-anchor": "end" }, (100 * p).toFixed(step < 0.01 ? 1 : 0) + " %"));
-  }
+  const { chart, yOf, left, band, H, bottom, plotW } = probabilityBars(highest, rows.length, "target and achieved probability of each outcome");
   const w = (band * 0.8) / series.length;
   rows.forEach((r, i) => {
     series.forEach((s, j) => {

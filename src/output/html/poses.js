@@ -23,32 +23,10 @@ function restContacts(shape, placement) {
 
 // Bars (SVG): per pose, the measured probability with its 95 % interval and the quasi-static probability.
 function probabilityChart(poses, method) {
-  const ns = "http://www.w3.org/2000/svg";
-  const svg = (tag, attributes, text) => {
-    const node = document.createElementNS(ns, tag);
-    for (const [k, v] of Object.entries(attributes)) node.setAttribute(k, v);
-    if (text !== undefined) node.textContent = text;
-    return node;
-  };
+  const svg = svgNode;
   const shown = poses.slice(0, 40);
   const highest = Math.max(0.01, ...shown.map((p) => Math.max(p.ci95[1], p.quasi_static_probability)));
-  const step = [0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.25].find((s) => highest / s <= 5) || 0.25;
-  const ticks = Math.ceil(highest / step);
-  const top = ticks * step;
-  const W = 760;
-  const H = 260;
-  const left = 48;
-  const bottom = 36;
-  const plotW = W - left - 10;
-  const plotH = H - bottom - 26;
-  const band = plotW / Math.max(1, shown.length);
-  const yOf = (p) => 10 + plotH * (1 - p / top);
-  const chart = svg("svg", { viewBox: `0 0 ${W} ${H}`, class: "bars", role: "img", "aria-label": "probability of each rest pose" });
-  for (let k = 0; k <= ticks; ++k) {
-    const p = k * step;
-    chart.append(svg("line", { x1: left, x2: W - 10, y1: yOf(p), y2: yOf(p), class: "gridline" }));
-    chart.append(svg("text", { x: left - 6, y: yOf(p) + 4, "text-anchor": "end" }, (100 * p).toFixed(step < 0.01 ? 1 : 0) + " %"));
-  }
+  const { chart, yOf, left, band, H, bottom, plotW } = probabilityBars(highest, shown.length, "probability of each rest pose");
   shown.forEach((p, i) => {
     const x0 = left + i * band;
     const w = Math.max(2, band * 0.36);
