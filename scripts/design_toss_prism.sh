@@ -28,5 +28,5 @@ read -r height speed spin <<< "$(python3 -c "import math; L=$L; g=9.81; print(4*
 echo "L = $L: --drop-height $height --velocity-max $speed --spin-max $spin --restitution 0.1 --friction 0.3"
 "$repose" design "$out/prism.xyz" --inertia convex --target "$out/binomial.json" --max-move 0.3 --model tossed \
   --drop-height "$height" --velocity-max "$speed" --spin-max "$spin" --restitution 0.1 --friction 0.3 \
-  --seed "$seed" --drops "$drops" --check-drops "$check" --out "$out/design" --html "$out/design.html"
+  --seed "$seed" --drops "$drops" --check-drops "$check" --out "$out/design" --html "$out/design.html" ${EXTRA:-}
 echo "files in $out"

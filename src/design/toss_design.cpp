@@ -43,6 +43,17 @@ void check(const TossDesignOptions& o) {
         "and the difference step in (0, 0.5)");
 }
 
+// The minimum-norm least-squares solver of `a`, singular values below kRankThreshold of the largest taken as
+// zero. The threshold must be set before the decomposition: Eigen computes the complete orthogonal factor Z
+// for the rank it sees then, and a solve at a lower rank set afterwards would apply a Z never computed (it
+// read uninitialised coefficients: a run's steps changed from one run to the next).
+Eigen::CompleteOrthogonalDecomposition<Matrix> least_squares(const Matrix& a) {
+  Eigen::CompleteOrthogonalDecomposition<Matrix> out(a.rows(), a.cols());
+  out.setThreshold(kRankThreshold);
+  out.compute(a);
+  return out;
+}
+
 // The first `k` entries (the outcomes) of a probability vector.
 Vector outcomes_of(const std::vector<double>& p, std::size_t k) {
   return Eigen::Map<const Vector>(p.data(), static_cast<Eigen::Index>(k));
@@ -170,9 +181,7 @@ TossDesignResult design_for_toss(const Particle& start, const DesignTarget& targ
     }
     // Least squares over the n columns. They span only the changes that keep Σq = 1 (rank n − 1), so the
     // solve must treat the last direction as absent (the threshold), and J acts on those changes alone.
-    Eigen::CompleteOrthogonalDecomposition<Matrix> differences(dq.transpose());
-    differences.setThreshold(kRankThreshold);
-    jac = differences.solve(dp.transpose()).transpose() * keep_sum;
+    jac = least_squares(dq.transpose()).solve(dp.transpose()).transpose() * keep_sum;
   }
 
   // Done when every outcome is within options.tolerance, or (tolerance 0) when the estimate is as close to
@@ -207,8 +216,7 @@ TossDesignResult design_for_toss(const Particle& start, const DesignTarget& targ
       }
       continue;
     }
-    Eigen::CompleteOrthogonalDecomposition<Matrix> solver(jac * keep_sum);
-    solver.setThreshold(kRankThreshold);
+    const Eigen::CompleteOrthogonalDecomposition<Matrix> solver = least_squares(jac * keep_sum);
     Vector direction = -(keep_sum * solver.solve(residual));
     const bool singular = solver.rank() < n - 1 || !direction.allFinite();
     if (singular) direction = -(keep_sum * residual);
