@@ -91,10 +91,6 @@ TossDesignResult design_for_toss(const Particle& start, const DesignTarget& targ
   Vector t(n);
   for (std::size_t o = 0; o < k; ++o) t[static_cast<Eigen::Index>(o)] = goal.outcomes[o].probability;
   const std::uint64_t most = options.model.drops;
-  Vector tolerance(n);
-  for (Eigen::Index o = 0; o < n; ++o)
-    tolerance[o] =
-        options.tolerance > 0 ? options.tolerance : std::sqrt(t[o] * (1 - t[o]) / static_cast<double>(most));
   const double spread = (t.array() * (1 - t.array())).maxCoeff();  // the largest binomial variance per drop
   // The estimate size whose standard error is kErrorPerResidual of `residual`, within [min_drops, drops].
   auto drops_for = [&](double residual) {
