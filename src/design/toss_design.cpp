@@ -79,6 +79,17 @@ double unbiased_objective(const Vector& p, const Vector& t, std::uint64_t n) {
 
 }  // namespace
 
+namespace detail {
+
+Eigen::MatrixXd difference_jacobian(const Eigen::MatrixXd& dq, const Eigen::MatrixXd& dp) {
+  const Eigen::Index n = dq.rows();
+  const Matrix keep_sum = Matrix::Identity(n, n) - Matrix::Constant(n, n, 1.0 / static_cast<double>(n));
+  // J dq = dp in least squares: Jᵀ = (dqᵀ)⁺ dpᵀ.
+  return least_squares(dq.transpose()).solve(dp.transpose()).transpose() * keep_sum;
+}
+
+}  // namespace detail
+
 TossDesignResult design_for_toss(const Particle& start, const DesignTarget& target,
                                  const TossDesignOptions& options) {
   check(options);
@@ -177,7 +188,7 @@ TossDesignResult design_for_toss(const Particle& start, const DesignTarget& targ
     }
     // Least squares over the n columns. They span only the changes that keep Σq = 1 (rank n − 1), so the
     // solve must treat the last direction as absent (the threshold), and J acts on those changes alone.
-    jac = least_squares(dq.transpose()).solve(dp.transpose()).transpose() * keep_sum;
+    jac = detail::difference_jacobian(dq, dp);
   }
 
   // Done when every outcome is within options.tolerance, or (tolerance 0) when the estimate is as close to

@@ -1,6 +1,7 @@
 // The tossed estimate of a design point (tossed_outcomes.cpp), for the toss design (toss_design.cpp).
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <vector>
 
@@ -17,5 +18,10 @@ TossedOutcomes tossed_outcomes(const Particle& particle, const RestLandscape& la
 // and the target's probability per outcome: frequencies, Wilson intervals, Pearson's χ².
 TossedOutcomes summarise(DropRange drops, std::vector<std::uint64_t> counts,
                          const std::vector<double>& target);
+
+// The Jacobian J (outcomes × outcomes) with J·dq ≈ dp over the columns of finite differences dq (changes of
+// the quasi-static probabilities, each summing to ~0) and dp (the tossed changes), least squares, acting on
+// changes that keep Σq = 1 alone (J·𝟙 = 0).
+Eigen::MatrixXd difference_jacobian(const Eigen::MatrixXd& dq, const Eigen::MatrixXd& dp);
 
 }  // namespace repose::detail

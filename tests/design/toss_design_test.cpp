@@ -117,6 +117,26 @@ TEST(TossedOutcomes, ChiSquareAndIntervalsAgainstValuesWorkedByHand) {
   EXPECT_EQ(impossible.p_value, 0);
 }
 
+// The finite differences' Jacobian has the orientation J·dq = dp: a made-up asymmetric A on changes that keep
+// Σq = 1, its five columns of differences exact, gives back A·P (P the projection onto those changes), not
+// its transpose. Tolerance: round-off of a 5 × 5 least squares.
+TEST(DesignForToss, TheDifferenceJacobianMapsQuasiStaticChangesToTossedOnes) {
+  const Eigen::Index n = 5;
+  Eigen::MatrixXd a(n, n);
+  a << 2.0, -1.0, 0.0, 0.3, -0.5,  //
+      0.1, 1.5, -0.7, 0.0, 0.2,    //
+      -0.4, 0.0, 3.0, -1.2, 0.0,   //
+      0.0, 0.6, -0.3, 0.9, 0.8,    //
+      1.1, -0.2, 0.0, 0.0, 2.4;
+  const Eigen::MatrixXd p = Eigen::MatrixXd::Identity(n, n) - Eigen::MatrixXd::Constant(n, n, 1.0 / n);
+  Eigen::MatrixXd dq(n, n);
+  const Eigen::VectorXd q = Eigen::VectorXd::Constant(n, 0.2);
+  for (Eigen::Index o = 0; o < n; ++o) dq.col(o) = 0.05 * (Eigen::VectorXd::Unit(n, o) - q);
+  const Eigen::MatrixXd jac = detail::difference_jacobian(dq, a * p * dq);
+  EXPECT_LT((jac - a * p).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LT((jac * Eigen::VectorXd::Ones(n)).cwiseAbs().maxCoeff(), 1e-12);
+}
+
 // The design for the toss on the cube target (0.4 on −z, 0.12 on each other face; vertices and centre
 // of mass free) under the toss fitted on the 5-sided prism. Tossed, the quasi-static design lands on its
 // heavy face far more often than 0.4 (momentum carries it past the lighter faces' small basins); the tossed
