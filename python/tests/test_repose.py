@@ -345,10 +345,10 @@ def test_design_for_the_toss_reports_its_checks_and_rejects_bad_toss_options():
     cube = repose.Particle.shape("box:x=1,y=1,z=1")
     d = repose.design(cube, target, model="tossed",
                       toss=dict(drop_height=4, velocity_max=4, spin_max=4, restitution=0.1, friction=0.3,
-                                drops=200, check_drops=300, iterations=1, threads=1))
+                                drops=60, check_drops=80, iterations=1, threads=1))
     assert d.model == "tossed"
-    assert d.tossed["check"]["drops"] == [200, 500]
-    assert sum(d.tossed["check"]["counts"]) == 300
+    assert d.tossed["check"]["drops"] == [60, 140]
+    assert sum(d.tossed["check"]["counts"]) == 80
     assert d.tossed["toss"]["friction"] == 0.3
     assert d.vertices.shape[1] == 3
     with pytest.raises(ValueError, match="drops"):

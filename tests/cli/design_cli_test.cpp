@@ -89,33 +89,36 @@ TEST_F(DesignCli, BadTargetsAndOptionsAreOneLineErrorsAndWriteNothing) {
 }
 
 // A tossed design (few drops: what is checked here is the command, not the physics — see
-// DesignForToss.* for that): its JSON holds the toss, both designs' checks on the unseen drops, the history
-// and the settles, and its files are the tossed design's.
+// DesignForToss.* for that; few enough for the sanitizer build, where this test is the toss design's run
+// through every stage: the finite differences, a step, the checks): its JSON holds the toss, both designs'
+// checks on the unseen drops, the history and the settles, and its files are the tossed design's.
 TEST_F(DesignCli, ATossedDesignReportsItsChecksAndItsSettles) {
   const std::string out = shell_quote(dir_.string() + "/out");
-  const auto r =
-      run_cli("design box:x=1,y=1,z=1 --target " + target("t.json", cube_target) +
-              " --model tossed --drop-height 4 --velocity-max 4 --spin-max 4 --restitution 0.1 "
-              "--friction 0.3 --drops 200 --check-drops 300 --toss-iterations 1 --threads 1 --out " +
-              out + " --json");
+  const auto r = run_cli("design box:x=1,y=1,z=1 --target " + target("t.json", cube_target) +
+                         " --model tossed --drop-height 4 --velocity-max 4 --spin-max 4 --restitution 0.1 "
+                         "--friction 0.3 --drops 60 --check-drops 80 --toss-iterations 1 --threads 1 --out " +
+                         out + " --json");
   const nlohmann::json j = parse_json(r);
   EXPECT_EQ(j["model"], "tossed");
   const nlohmann::json& t = j["tossed"];
-  EXPECT_EQ(t["toss"]["drops"], 200);
+  EXPECT_EQ(t["toss"]["drops"], 60);
   EXPECT_EQ(t["toss"]["restitution"], 0.1);
-  EXPECT_EQ(t["check"]["drops"], nlohmann::json({200, 500}));
-  EXPECT_EQ(t["check_quasi_static_design"]["drops"], nlohmann::json({200, 500}));
+  EXPECT_EQ(t["check"]["drops"], nlohmann::json({60, 140}));
+  EXPECT_EQ(t["check_quasi_static_design"]["drops"], nlohmann::json({60, 140}));
   ASSERT_EQ(t["check"]["counts"].size(), 8u);  // six outcomes, other faces, not at rest
   std::uint64_t total = 0;
   for (const auto& c : t["check"]["counts"]) total += c.get<std::uint64_t>();
-  EXPECT_EQ(total, 300u);
+  EXPECT_EQ(total, 80u);
   EXPECT_EQ(t["history"][0]["kind"], "start");
-  EXPECT_GE(t["settles"].get<std::uint64_t>(), 600u + 200u);
+  // The start, six finite differences (one per outcome) and a step, then the two checks.
+  EXPECT_GE(t["history"].size(), 8u);
+  EXPECT_EQ(t["history"][1]["kind"], "difference");
+  EXPECT_EQ(t["settles"].get<std::uint64_t>(), 8u * 60u + 2u * 80u);
   EXPECT_TRUE(j.contains("quasi_static_design"));
   EXPECT_TRUE(fs::exists(dir_.string() + "/out/design.obj"));
   // The table names both designs and the check drops.
   const auto table = run_cli("design box:x=1,y=1,z=1 --target " + target("t.json", cube_target) +
-                             " --model tossed --drops 100 --check-drops 100 --toss-iterations 0 --threads 1");
+                             " --model tossed --drops 40 --check-drops 40 --toss-iterations 0 --threads 1");
   EXPECT_EQ(table.exit_code, 0) << table.err;
   EXPECT_THAT(table.out, ::testing::HasSubstr("never seen by the optimiser"));
   EXPECT_THAT(table.out, ::testing::HasSubstr("chi-square"));

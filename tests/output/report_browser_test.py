@@ -182,7 +182,7 @@ def test_design_report_shows_target_achieved_poses_and_history(browser):
     # A tossed design: both designs' checks with intervals, and the tossed history too.
     path = make("design-tossed.html", "design", "box:x=1,y=1,z=1", "--target", "cube-target.json", "--model",
                 "tossed", "--drop-height", "4", "--velocity-max", "3", "--spin-max", "3", "--restitution", "0.1",
-                "--friction", "0.3", "--drops", "200", "--check-drops", "200", "--toss-iterations", "1",
+                "--friction", "0.3", "--drops", "60", "--check-drops", "60", "--toss-iterations", "1",
                 "--html", "design-tossed.html")
     open_report(browser, path)
     assert_drawn(browser, path, "design-tossed.png")
