@@ -113,6 +113,8 @@ TEST_F(DesignCli, ATossedDesignReportsItsChecksAndItsSettles) {
   // The start, six finite differences (one per outcome) and a step, then the two checks.
   EXPECT_GE(t["history"].size(), 8u);
   EXPECT_EQ(t["history"][1]["kind"], "difference");
+  EXPECT_EQ(t["history"][1]["surrogate_target"].size(),
+            6u);  // the quasi-static target it was designed toward
   EXPECT_EQ(t["settles"].get<std::uint64_t>(), 8u * 60u + 2u * 80u);
   EXPECT_TRUE(j.contains("quasi_static_design"));
   EXPECT_TRUE(fs::exists(dir_.string() + "/out/design.obj"));
@@ -122,6 +124,18 @@ TEST_F(DesignCli, ATossedDesignReportsItsChecksAndItsSettles) {
   EXPECT_EQ(table.exit_code, 0) << table.err;
   EXPECT_THAT(table.out, ::testing::HasSubstr("never seen by the optimiser"));
   EXPECT_THAT(table.out, ::testing::HasSubstr("chi-square"));
+}
+
+// Drops that do not rest (a step limit far too small) are counted as such, and a design whose drops land
+// nowhere is never "converged" (its χ² over the landed drops is 0, but the target is not met).
+TEST_F(DesignCli, ATossedDesignWhoseDropsDoNotRestIsNotConverged) {
+  const auto r = run_cli("design box:x=1,y=1,z=1 --target " + target("t.json", cube_target) +
+                         " --model tossed --drop-height 4 --max-steps 3 --drops 20 --check-drops 20 "
+                         "--toss-iterations 0 --threads 1 --json");
+  const nlohmann::json j = parse_json(r);
+  EXPECT_NE(j["tossed"]["stop"], "converged");
+  EXPECT_FALSE(j["tossed"]["reached"].get<bool>());
+  EXPECT_EQ(j["tossed"]["check"]["counts"].back(), 20);  // every check drop: not at rest
 }
 
 TEST_F(DesignCli, AnUnreachableTargetSaysSoAndGivesItsBestAchievable) {
