@@ -9,6 +9,8 @@ repo="$(cd "$(dirname "$0")/.." && pwd)"
 repose="${1:-$repo/build/ci/apps/repose/repose}"
 # Their optimiser bounds no move; ours by --max-move (x L).
 move="${MOVE:-1}"
+# Extra options for every design (e.g. EXTRA=--fold-faces).
+read -r -a extra <<<"${EXTRA:-}"
 data="$repo/data/experiments/baktash2025"
 out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
@@ -16,14 +18,14 @@ printf '%-22s %-12s %-14s %-28s %-28s\n' example "their design" "ours: refined" 
 row() {  # name, their design, its target, initial shape, its target
   local name=$1 design=$2 target=$3 start=$4 start_target=$5
   local theirs refined ours free
-  theirs=$("$repose" design "$design" --inertia convex --target "$target" --vary vertices --outcome-angle 180 \
+  theirs=$("$repose" design "$design" "${extra[@]}" --inertia convex --target "$target" --vary vertices --outcome-angle 180 \
            --iterations 0 --json | python3 -c 'import json,sys; print("%.4f" % json.load(sys.stdin)["max_error"])')
-  refined=$("$repose" design "$design" --inertia convex --target "$target" --vary vertices --outcome-angle 180 \
+  refined=$("$repose" design "$design" "${extra[@]}" --inertia convex --target "$target" --vary vertices --outcome-angle 180 \
             --json | python3 -c 'import json,sys; j=json.load(sys.stdin); print("%.1e (%d it)" % (j["max_error"], len(j["history"])))')
-  ours=$( { /usr/bin/time -f "%e" "$repose" design "$start" --inertia convex --target "$start_target" \
+  ours=$( { /usr/bin/time -f "%e" "$repose" design "$start" "${extra[@]}" --inertia convex --target "$start_target" \
             --vary vertices --outcome-angle 180 --max-move "$move" --json > "$out/o.json"; } 2>&1 )
   ours=$(python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); print("%.1e (%d it, %s s)" % (j["max_error"], len(j["history"]), sys.argv[2]))' "$out/o.json" "$ours")
-  free=$("$repose" design "$start" --inertia convex --target "$start_target" --vary vertices+center-of-mass --max-move "$move" \
+  free=$("$repose" design "$start" "${extra[@]}" --inertia convex --target "$start_target" --vary vertices+center-of-mass --max-move "$move" \
          --outcome-angle 180 --json | python3 -c 'import json,sys; j=json.load(sys.stdin); import math; o=j["center_of_mass_offset"]; print("%.1e (offset %.2f L)" % (j["max_error"], math.sqrt(sum(x*x for x in o))/j["characteristic_length"]))')
   printf '%-22s %-12s %-14s %-28s %-28s\n' "$name" "$theirs" "$refined" "$ours" "$free"
 }
@@ -47,7 +49,7 @@ printf '\n%-22s %-12s %-24s %-24s\n' example "their design" "ours: refined (G fi
 for d in armadillo dragon; do
   mesh="$data/meshes/D3_${d}__opt_out.obj" target="$i/D3_${d}__initial_normal_probs.json"
   G=$(tr -s ' \n' ',' < "$data/meshes/D3_${d}__G_opt_out.txt" | sed 's/,$//')
-  run() { "$repose" design "$mesh" --inertia convex --com "$G" --target "$target" --outcome-angle 180 \
+  run() { "$repose" design "$mesh" "${extra[@]}" --inertia convex --com "$G" --target "$target" --outcome-angle 180 \
             --max-move "$move" --json "$@" | python3 -c 'import json,sys; j=json.load(sys.stdin); print("%.1e (%d it)" % (j["max_error"], len(j["history"])))'; }
   printf '%-22s %-12s %-24s %-24s\n' "D3_$d" "$(run --vary vertices --mass fixed --iterations 0 | cut -d' ' -f1)" \
     "$(run --vary vertices --mass fixed)" "$(run --vary center-of-mass)"

@@ -35,6 +35,7 @@ struct DesignCliOptions {
   std::string out_dir;
   std::string html;
   bool json = false;
+  bool fold_faces = false;
 };
 
 void print_design(const DesignCliOptions& o, const DesignTarget& target, const DesignResult& r) {
@@ -102,6 +103,9 @@ Command add_design_command(CLI::App& app) {
                   "x L: no hull edge gets shorter, unless it started shorter (default 0.02)");
   sub->add_option("--min-face", opts->design.min_face_area,
                   "x L^2: no hull face gets smaller, unless it started smaller (default 0.001)");
+  sub->add_flag("--fold-faces", opts->fold_faces,
+                "Vertices: let faces of four or more vertices fold (by default they stay flat: a flat face "
+                "is a kink of the probabilities, and a die's faces are flat)");
   sub->add_option("--max-step", opts->design.max_step,
                   "x L: the most any vertex or face plane moves in one iteration (default 0.05)");
   sub->add_option("--smoothing", opts->design.smoothing,
@@ -128,6 +132,7 @@ Command add_design_command(CLI::App& app) {
             DesignCliOptions& o = *opts;
             o.design.freedom = parse_design_freedom(o.vary);
             o.design.mass = o.mass == "fixed" ? MassModel::fixed : MassModel::follows_shape;
+            o.design.keep_faces_flat = !o.fold_faces;
             if (!(o.outcome_angle > 0 && o.outcome_angle <= 180))
               throw Error("--outcome-angle " + num(o.outcome_angle) + ": must be in (0, 180] degrees");
             o.design.outcome_angle = o.outcome_angle * std::numbers::pi / 180;

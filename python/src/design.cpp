@@ -52,6 +52,9 @@ DesignOptions design_options(const py::dict& kwargs) {
       o.min_face_area = number();
     } else if (name == "smoothing") {
       o.smoothing = number();
+    } else if (name == "keep_faces_flat") {
+      if (!py::isinstance<py::bool_>(value)) throw Error("design: keep_faces_flat must be True or False");
+      o.keep_faces_flat = value.cast<bool>();
     } else if (name == "tolerance") {
       o.tolerance = number();
     } else if (name == "iterations") {
@@ -63,7 +66,7 @@ DesignOptions design_options(const py::dict& kwargs) {
       throw Error(
           "design: unknown option '" + name +
           "' (vary, mass, outcome_angle, com_margin, max_move, max_step, min_edge, min_face, smoothing, "
-          "tolerance, iterations)");
+          "keep_faces_flat, tolerance, iterations)");
     }
   }
   return o;

@@ -55,11 +55,13 @@ DesignSetup design_setup(const Particle& start, const DesignOptions& options) {
                     options.max_vertex_move * length,
                     std::min(options.min_edge * length, shortest_edge(start.hull)),
                     std::min(options.min_face_area * length * length, smallest_face(start.hull)),
+                    {},
                     {}};
   if (s.shape == ShapeFreedom::faces) {
     for (const Vec3& p : face_planes(start.hull)) s.bounds.origin.push_back(foot(p));
   } else {
     s.bounds.origin = start.hull.vertices;
+    if (s.shape == ShapeFreedom::vertices && options.keep_faces_flat) s.bounds.flat = flat_faces(start.hull);
   }
   return s;
 }
@@ -114,12 +116,15 @@ Descent descend(Point from, const DesignTarget& target, const DesignSetup& setup
     const System sys = system(at);
     const Eigen::VectorXd& residual = sys.residual;
     const Eigen::VectorXd& scale = sys.scale;
+    // The flat faces that are still faces (a face whose points fell inside the hull constrains nothing).
+    Bounds live = bounds;
+    live.flat = standing_faces(bounds.flat, at.particle.hull, at.design_index);
     const std::unique_ptr<Metric> metric = shape_metric(at, shape, options.smoothing, length);
     // λ's first value: 1e-3 of the largest diagonal of JM⁻¹Jᵀ (a flat start, J = 0, still gets a positive
     // one, so that the solve stays defined).
-    if (lam < 0)
-      lam = std::max(
-          1e-3 * (sys.jac * apply_inverse(metric.get(), sys.jac.transpose())).diagonal().maxCoeff(), 1e-12);
+    const double typical_lam = std::max(
+        1e-3 * (sys.jac * apply_inverse(metric.get(), sys.jac.transpose())).diagonal().maxCoeff(), 1e-12);
+    if (lam < 0) lam = typical_lam;
     // The trials move every variable together first; if none lowers the objective, the centre of mass alone,
     // then the shape alone (a block step: on a fine hull the joint least-norm step is mostly the vertices',
     // whose many changes of structure can defeat it where the centre of mass's share alone would descend).
@@ -134,7 +139,7 @@ Descent descend(Point from, const DesignTarget& target, const DesignSetup& setup
       const int trials = block == 0 ? options.max_trials : std::max(1, options.max_trials / 2);
       for (int trial = 0; trial < trials; ++trial) {
         ++step.trials;
-        Eigen::VectorXd d = lm_step(jac, residual, block_lam, at, bounds, shape, length, metric.get());
+        Eigen::VectorXd d = lm_step(jac, residual, block_lam, at, live, shape, length, metric.get());
         // A trust region: no shape variable moves more than max_step (× L) in one iteration, so that the
         // shape follows its gradient's path instead of jumping across many changes of structure at once (the
         // centre of mass, whose probabilities vary smoothly over much longer moves, is not held back).
@@ -143,7 +148,7 @@ Descent descend(Point from, const DesignTarget& target, const DesignSetup& setup
         d = d.cwiseProduct(scale);
         double moved = 0;
         std::optional<Point> next =
-            trial_point(at, d, mass, shape, bounds, start.name, target, options, step, moved);
+            trial_point(at, d, mass, shape, live, start.name, target, options, step, moved);
         // A decrease at round-off is no progress (it would only spin out the iterations).
         if (next && next->objective < at.objective * (1 - kMinDecrease)) {
           step.step = std::max(moved, (next->com - at.com).norm()) / length;
@@ -151,7 +156,9 @@ Descent descend(Point from, const DesignTarget& target, const DesignSetup& setup
           return next;
         }
         if (next) ++step.rose;
-        block_lam *= 4;
+        // After a rejection λ is at least its typical value: a λ lowered by many acceptances would otherwise
+        // grow through the trials while the trust region still caps every step at the same length.
+        block_lam = std::max(4 * block_lam, typical_lam);
       }
       if (block == 0) lam = block_lam;
     }

@@ -37,6 +37,7 @@ nlohmann::json design_object(const std::string& source, const DesignTarget& targ
                   {"min_edge", o.min_edge},
                   {"min_face", o.min_face_area},
                   {"smoothing", o.smoothing},
+                  {"keep_faces_flat", o.keep_faces_flat},
                   {"tolerance", o.tolerance},
                   {"iterations", o.max_iterations}};
   nlohmann::json outcomes = nlohmann::json::array();

@@ -13,6 +13,8 @@ namespace repose::detail {
 
 namespace {
 constexpr int kComProjectionRounds = 32;  // rounds pushing the centre of mass inside the shrunk hull
+// × L: a flat face's points off its plane by no more than round-off, so that the hull merges it whole.
+constexpr double kFlatness = 1e-14;
 }  // namespace
 
 // The centre of mass pushed at most kComProjectionRounds times along the most violated face normal until it
@@ -46,7 +48,7 @@ double smallest_face(const ConvexHull& hull) {
 }
 
 Point evaluate(std::vector<Vec3> points, std::vector<Vec3> planes, const Vec3& com, const std::string& name,
-               const DesignTarget& target, const DesignOptions& options) {
+               const DesignTarget& target, const DesignOptions& options, const ConvexHull* hull) {
   Point p;
   p.points = std::move(points);
   p.planes = std::move(planes);
@@ -54,7 +56,13 @@ Point evaluate(std::vector<Vec3> points, std::vector<Vec3> planes, const Vec3& c
   MeshOptions mesh;
   mesh.inertia = InertiaModel::convex;
   mesh.center_of_mass = com;
-  p.particle = make_particle(TriangleMesh{p.points, {}}, name, 1.0, mesh);
+  // The particle is made from the hull's vertices (in the points' order), so its hull's source indices count
+  // those; through the points' hull they become design points.
+  const ConvexHull own = hull != nullptr ? ConvexHull{} : compute_convex_hull(p.points);
+  const ConvexHull& outer = hull != nullptr ? *hull : own;
+  p.particle = make_particle(TriangleMesh{outer.vertices, {}}, name, 1.0, mesh);
+  for (const int v : p.particle.hull.source_index)
+    p.design_index.push_back(outer.source_index[static_cast<std::size_t>(v)]);
   p.centroid = detail::solid_centroid<double>(p.particle.hull.vertices, p.particle.hull) + com;
   p.landscape = compute_rest_landscape(p.particle);
   p.target = target;
@@ -97,9 +105,9 @@ Eigen::MatrixXd jacobian(const Point& p, MassModel mass, ShapeFreedom shape) {
     shape_columns = detail::plane_columns(rows.leftCols(hull_columns), p.particle.hull, -p.com, p.planes);
   } else {
     shape_columns = Eigen::MatrixXd::Zero(rows.rows(), 3 * static_cast<Eigen::Index>(p.points.size()));
-    const auto& source = p.particle.hull.source_index;
-    for (std::size_t j = 0; j < source.size(); ++j)
-      shape_columns.middleCols<3>(3 * source[j]) = rows.middleCols<3>(3 * static_cast<Eigen::Index>(j));
+    for (std::size_t j = 0; j < p.design_index.size(); ++j)
+      shape_columns.middleCols<3>(3 * static_cast<Eigen::Index>(p.design_index[j])) =
+          rows.middleCols<3>(3 * static_cast<Eigen::Index>(j));
     if (shape == ShapeFreedom::none) shape_columns.setZero();
   }
   Eigen::MatrixXd out(rows.rows(), shape_columns.cols() + 3);
@@ -124,8 +132,13 @@ std::optional<Point> trial_point(const Point& at, const Eigen::VectorXd& d, Mass
   if (shape == ShapeFreedom::vertices) {
     for (std::size_t i = 0; i < points.size(); ++i) {
       points[i] = within(points[i] + d.segment<3>(3 * static_cast<Eigen::Index>(i)), bounds.origin[i]);
-      moved = std::max(moved, (points[i] - at.points[i]).norm());
     }
+    // The step kept the flat faces flat to first order; put their points back on their planes.
+    if (!flatten(points, bounds.flat, kFlatness * at.particle.length)) {
+      ++step.degenerate;
+      return std::nullopt;
+    }
+    for (std::size_t i = 0; i < points.size(); ++i) moved = std::max(moved, (points[i] - at.points[i]).norm());
   } else if (shape == ShapeFreedom::faces) {
     for (std::size_t i = 0; i < planes.size(); ++i) {
       const Vec3 p = planes[i] + d.segment<3>(3 * static_cast<Eigen::Index>(i));
@@ -157,7 +170,7 @@ std::optional<Point> trial_point(const Point& at, const Eigen::VectorXd& d, Mass
       return std::nullopt;
     }
     moved = std::max(moved, (com - at.com).norm());
-    return evaluate(std::move(points), std::move(planes), com, name, target, options);
+    return evaluate(std::move(points), std::move(planes), com, name, target, options, &hull);
   } catch (const Error&) {
     ++step.degenerate;  // the points' hull degenerated, or its faces no longer close
     return std::nullopt;

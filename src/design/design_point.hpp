@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "flat_faces.hpp"
 #include "repose/design/design.hpp"
 #include "repose/design/target.hpp"
 #include "repose/model/particle.hpp"
@@ -25,6 +26,9 @@ struct Point {
   Vec3 com = Vec3::Zero();
   Vec3 centroid = Vec3::Zero();  // the solid hull's
   Particle particle;             // body frame: points − com
+  // Per particle hull vertex: its design point (the particle's own indices count only the points on the
+  // hull, so they shift once a point falls inside it).
+  std::vector<int> design_index;
   RestLandscape landscape;
   DesignTarget target;
   std::vector<double> achieved;
@@ -35,6 +39,7 @@ struct Point {
 struct Bounds {
   double com_margin, max_move, min_edge, min_area;  // lengths and an area
   std::vector<Vec3> origin;                         // where each vertex (faces: each plane's foot) started
+  std::vector<FlatFace> flat;                       // vertices: faces kept flat (flat_faces.hpp)
 };
 
 inline Vec3 foot(const Vec3& plane) {
@@ -47,9 +52,10 @@ bool push_inside(const ConvexHull& hull, double margin, Vec3& com);
 double shortest_edge(const ConvexHull& hull);
 double smallest_face(const ConvexHull& hull);
 
-// The point with these shape points (planes: faces mode) and centre of mass (the start's body frame).
+// The point with these shape points (planes: faces mode) and centre of mass (the start's body frame);
+// `hull`, if given, is the points' hull (computed otherwise).
 Point evaluate(std::vector<Vec3> points, std::vector<Vec3> planes, const Vec3& com, const std::string& name,
-               const DesignTarget& target, const DesignOptions& options);
+               const DesignTarget& target, const DesignOptions& options, const ConvexHull* hull = nullptr);
 
 // The outcomes' (then the unassigned faces') probabilities' Jacobian over the design variables: 3 per shape
 // variable (a design vertex, zero for one not on the hull; or a plane), then the centre of mass's 3.

@@ -7,11 +7,13 @@
 #include <vector>
 
 #include "face_planes.hpp"
+#include "flat_faces.hpp"
 
 namespace repose::detail {
 
 namespace {
 constexpr int kActivePasses = 4;  // re-solves of a step as vertices reach their move bound
+constexpr double kFlatRidge = 1e-10;  // × λ: the flat faces' rows' ridge (an infinite weight, kept solvable)
 }  // namespace
 
 // The shape's metric M = I + αΛ over its variables (per coordinate), Λ the graph Laplacian of the hull's
@@ -28,7 +30,7 @@ std::unique_ptr<Metric> shape_metric(const Point& at, ShapeFreedom shape, double
     for (std::size_t v = 0; v < hull.vertices.size(); ++v)
       for (const int w : hull.neighbors(static_cast<int>(v)))
         if (static_cast<int>(v) < w) {
-          links.emplace_back(hull.source_index[v], hull.source_index[static_cast<std::size_t>(w)]);
+          links.emplace_back(at.design_index[v], at.design_index[static_cast<std::size_t>(w)]);
           spacing += (hull.vertices[v] - hull.vertices[static_cast<std::size_t>(w)]).norm();
         }
   } else {
@@ -92,10 +94,24 @@ Eigen::VectorXd lm_step(Eigen::MatrixXd jac, const Eigen::VectorXd& residual, do
                         const Bounds& bounds, ShapeFreedom shape, double length, const Metric* metric) {
   Eigen::VectorXd d;
   std::vector<char> held(bounds.origin.size(), 0);
+  // Flat faces stay flat to first order: their rows C join the outcomes' with an infinite weight (the limit
+  // of a weight μ → ∞ is the ridge λ/μ → 0 on their diagonal; a tiny one keeps dependent rows solvable).
+  // Scaled variables are the unscaled ones times L throughout, so C's rows serve as they are.
+  Eigen::MatrixXd flat = shape == ShapeFreedom::vertices
+                             ? flatness_rows(bounds.flat, at.points, jac.cols())
+                             : Eigen::MatrixXd(0, jac.cols());
+  const Eigen::Index outcomes = jac.rows(), rows = outcomes + flat.rows();
+  Eigen::VectorXd ridge = Eigen::VectorXd::Constant(rows, lambda);
+  ridge.tail(flat.rows()).setConstant(kFlatRidge * lambda);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(rows);
+  rhs.head(outcomes) = residual;
   for (int pass = 0; pass < kActivePasses; ++pass) {
-    const Eigen::MatrixXd g = apply_inverse(metric, jac.transpose());
-    const Eigen::MatrixXd a = jac * g + lambda * Eigen::MatrixXd::Identity(jac.rows(), jac.rows());
-    d = -(g * a.ldlt().solve(residual));
+    Eigen::MatrixXd all(rows, jac.cols());
+    all << jac, flat;
+    const Eigen::MatrixXd g = apply_inverse(metric, all.transpose());
+    Eigen::MatrixXd a = all * g;
+    a.diagonal() += ridge;
+    d = -(g * a.ldlt().solve(rhs));
     if (shape == ShapeFreedom::none) break;
     bool changed = false;
     for (std::size_t i = 0; i < bounds.origin.size(); ++i) {
@@ -113,6 +129,7 @@ Eigen::VectorXd lm_step(Eigen::MatrixXd jac, const Eigen::VectorXd& residual, do
       if (d.segment<3>(col).dot(u) <= 0) continue;
       held[i] = changed = true;
       jac.middleCols<3>(col) = jac.middleCols<3>(col) * (Mat3::Identity() - u * u.transpose());
+      flat.middleCols<3>(col) = flat.middleCols<3>(col) * (Mat3::Identity() - u * u.transpose());
     }
     if (!changed) break;
   }

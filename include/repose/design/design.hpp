@@ -37,6 +37,9 @@ struct DesignOptions {
                                   ///< moves further than this from where it started
   double min_edge = 0.02;       ///< × L: no hull edge gets shorter (unless it started shorter)
   double min_face_area = 1e-3;  ///< × L²: no hull face gets smaller (unless it started smaller)
+  /// Vertices: the start's faces of four or more vertices stay flat (each is a kink of the probabilities
+  /// otherwise: moving one vertex folds it one way or the other). False lets them fold.
+  bool keep_faces_flat = true;
   double max_step = 0.05;       ///< × L: the most any shape variable moves in one iteration (a trust region)
   /// × L: shape steps are smooth over about this distance (a Sobolev metric; 0: every variable on its own).
   double smoothing = 0.1;

@@ -1,0 +1,158 @@
+// Design points and flat faces (src/design/design_point.hpp, flat_faces.hpp): the Jacobian's columns belong
+// to the design's own points even when some lie inside the hull, and a flat face stays flat, so that the
+// probabilities' one-sided derivatives along a step agree with the Jacobian on both sides.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "../../src/design/design_point.hpp"
+#include "../../src/design/flat_faces.hpp"
+#include "repose/design/design.hpp"
+#include "repose/design/target.hpp"
+
+namespace repose {
+namespace {
+
+const DesignTarget kAxes = parse_design_target(
+    "[[[1,0,0],0.2],[[-1,0,0],0.2],[[0,1,0],0.2],[[0,-1,0],0.15],[[0,0,1],0.15],[[0,0,-1],0.1]]", "axes");
+
+DesignOptions every_face() {
+  DesignOptions o;
+  o.outcome_angle = std::numbers::pi;  // every face to its nearest axis
+  return o;
+}
+
+detail::Point point(const std::vector<Vec3>& points, const DesignOptions& options) {
+  DesignTarget target = kAxes;
+  ConvexHull hull = compute_convex_hull(points);
+  assign_outcome_faces(target, hull, options.outcome_angle, "--outcome-angle");
+  return detail::evaluate(points, {}, Vec3::Zero(), "points", target, options);
+}
+
+// Points inside the hull (first in the list, and among the others) are design points too: the Jacobian's
+// columns for every point on the hull equal five-point central differences of the outcomes' probabilities
+// with that point moved (h = 4e-5·L, the tolerance of BasinGradient's vertex test, whose noise argument
+// applies), and an inside point's columns are zero. The particle counts only the points on the hull, so a
+// column placed by the particle's own indices lands on the wrong point after the first inside one.
+TEST(DesignPoint, JacobianColumnsBelongToTheirPointsWhenSomeAreInsideTheHull) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> radius(0.8, 1.0);
+  std::vector<Vec3> points;
+  for (int k = 0; k < 34; ++k) {
+    const bool inside = k == 0 || k == 9 || k == 20 || k == 33;
+    const Vec3 u = Vec3(normal(rng), normal(rng), normal(rng)).normalized();
+    points.push_back(u * (inside ? 0.2 : radius(rng)) + Vec3(0.05, -0.03, 0.02));
+  }
+  const DesignOptions options = every_face();
+  const detail::Point at = point(points, options);
+  ASSERT_LE(at.particle.hull.vertices.size(), 30u);  // the four inside, and any other the hull covers
+  ASSERT_GE(at.particle.hull.vertices.size(), 20u);
+  for (const HullFace& f : at.particle.hull.faces) ASSERT_EQ(f.loop.size(), 3u);
+  const Eigen::MatrixXd jac = detail::jacobian(at, MassModel::fixed, ShapeFreedom::vertices);
+  const double h = 4e-5 * at.particle.length;
+  int compared = 0, skipped = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const bool on_hull = std::find(at.design_index.begin(), at.design_index.end(), static_cast<int>(i)) !=
+                         at.design_index.end();
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Index col = 3 * static_cast<Eigen::Index>(i) + k;
+      if (!on_hull) {
+        EXPECT_EQ(jac.col(col).cwiseAbs().maxCoeff(), 0.0) << "inside point " << i;
+        continue;
+      }
+      bool same = true;
+      auto moved = [&](double s) {
+        std::vector<Vec3> q = points;
+        q[i][k] += s * h;
+        const detail::Point x = point(q, options);
+        same = same && x.landscape.face_rest == at.landscape.face_rest &&
+               x.particle.hull.faces.size() == at.particle.hull.faces.size();
+        return Eigen::Map<const Eigen::VectorXd>(x.achieved.data(), static_cast<Eigen::Index>(x.achieved.size()))
+            .eval();
+      };
+      const Eigen::VectorXd fd = (8 * (moved(1) - moved(-1)) - (moved(2) - moved(-2))) / (12 * h);
+      if (!same) {
+        ++skipped;
+        continue;
+      }
+      for (Eigen::Index o = 0; o < fd.size(); ++o) {
+        const double scale = std::abs(fd[o]) + 1e-2 / at.particle.length;
+        EXPECT_NEAR(jac(o, col), fd[o], 1e-6 * scale) << "point " << i << " axis " << k << " outcome " << o;
+        ++compared;
+      }
+    }
+  }
+  std::printf("compared %d derivatives, %d coordinates skipped (structure changes within 2h)\n", compared,
+              skipped);
+  EXPECT_LT(skipped, static_cast<int>(3 * at.design_index.size() / 8));
+}
+
+// A cube's points jittered by 1e-3·L are put back on planes: each face's four corners coplanar to round-off,
+// so the hull is a hexahedron of six quadrilaterals again; the move is of the jitter's order.
+TEST(FlatFaces, FlattenPutsEachFacesCornersBackOnAPlane) {
+  const ConvexHull cube = compute_convex_hull({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0},
+                                               {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}});
+  const std::vector<detail::FlatFace> flat = detail::flat_faces(cube);
+  ASSERT_EQ(flat.size(), 6u);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> jitter(-1e-3, 1e-3);
+  std::vector<Vec3> points = cube.vertices;
+  for (Vec3& p : points) p += Vec3(jitter(rng), jitter(rng), jitter(rng));
+  EXPECT_GT(compute_convex_hull(points).faces.size(), 6u);  // folded
+  std::vector<Vec3> flattened = points;
+  ASSERT_TRUE(detail::flatten(flattened, flat, 1e-14));
+  const ConvexHull after = compute_convex_hull(flattened);
+  ASSERT_EQ(after.faces.size(), 6u);
+  for (const HullFace& f : after.faces) EXPECT_EQ(f.loop.size(), 4u);
+  for (std::size_t i = 0; i < points.size(); ++i) EXPECT_LT((flattened[i] - points[i]).norm(), 4e-3);
+}
+
+// With flat faces kept flat a step's one-sided derivatives agree: along a random direction within the
+// faces' planes (projected on the constraints' null space) the probabilities of the cube's outcomes change
+// at the Jacobian's rate forwards and backwards (t = 1e-6·L; a one-sided difference's error is t times the
+// curvature, ~1e-6 here; tolerance 1e-4 of the rate's scale). Moving one corner off its faces would fold them
+// (the kink: one-sided rates of a quadrilateral differ by ~30 %).
+TEST(FlatFaces, AStepWithinTheFacesPlanesHasOneDerivative) {
+  std::vector<Vec3> corners;
+  for (const double x : {-0.5, 0.5})
+    for (const double y : {-0.55, 0.55})
+      for (const double z : {-0.45, 0.45}) corners.emplace_back(x + 0.03, y, z - 0.02);
+  const DesignOptions options = every_face();
+  const detail::Point at = point(corners, options);
+  const std::vector<detail::FlatFace> flat = detail::flat_faces(at.particle.hull);
+  ASSERT_EQ(flat.size(), 6u);
+  const Eigen::MatrixXd jac = detail::jacobian(at, MassModel::fixed, ShapeFreedom::vertices);
+  const Eigen::MatrixXd c = detail::flatness_rows(flat, at.points, jac.cols());
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal;
+  const double t = 1e-6 * at.particle.length;
+  for (int trial = 0; trial < 5; ++trial) {
+    Eigen::VectorXd d(jac.cols());
+    for (Eigen::Index k = 0; k < d.size(); ++k) d[k] = normal(rng);
+    d.tail<3>().setZero();
+    d -= c.transpose() * (c * c.transpose()).ldlt().solve(c * d);  // within the planes, to first order
+    d /= d.norm();
+    const Eigen::VectorXd rate = jac * d;
+    for (const double s : {1.0, -1.0}) {
+      std::vector<Vec3> q = at.points;
+      for (std::size_t i = 0; i < q.size(); ++i) q[i] += s * t * d.segment<3>(3 * static_cast<Eigen::Index>(i));
+      ASSERT_TRUE(detail::flatten(q, flat, 1e-14 * at.particle.length));
+      DesignTarget target = at.target;
+      const detail::Point x = detail::evaluate(q, {}, at.com, "moved", target, options);
+      ASSERT_EQ(x.particle.hull.faces.size(), 6u);
+      for (Eigen::Index o = 0; o < rate.size(); ++o) {
+        const double one_sided = s * (x.achieved[static_cast<std::size_t>(o)] - at.achieved[static_cast<std::size_t>(o)]) / t;
+        EXPECT_NEAR(one_sided, rate[o], 1e-4 * (rate.cwiseAbs().maxCoeff() + 1e-3))
+            << "trial " << trial << " side " << s << " outcome " << o;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace repose
