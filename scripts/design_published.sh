@@ -45,12 +45,14 @@ row 2D6_hendecahedron_V1 "$data/meshes/2D6_hendecahedron_V1__opt_test.obj" \
 # The D3 dice (their centre of mass frozen, G in *_G_opt_out.txt; their initial hulls are not in their
 # repository): their design by our exact landscape, ours refined from it (vertices, G fixed), and ours moving
 # the centre of mass alone on their design's hull.
-printf '\n%-22s %-12s %-24s %-24s\n' example "their design" "ours: refined (G fixed)" "ours: centre of mass"
+printf '\n%-22s %-12s %-24s %-24s %-24s\n' example "their design" "ours: refined (G fixed)" "the same, no min edge/face" \
+  "ours: centre of mass"
 for d in armadillo dragon; do
   mesh="$data/meshes/D3_${d}__opt_out.obj" target="$i/D3_${d}__initial_normal_probs.json"
   G=$(tr -s ' \n' ',' < "$data/meshes/D3_${d}__G_opt_out.txt" | sed 's/,$//')
   run() { "$repose" design "$mesh" "${extra[@]}" --inertia convex --com "$G" --target "$target" --outcome-angle 180 \
             --max-move "$move" --json "$@" | python3 -c 'import json,sys; j=json.load(sys.stdin); print("%.1e (%d it)" % (j["max_error"], len(j["history"])))'; }
-  printf '%-22s %-12s %-24s %-24s\n' "D3_$d" "$(run --vary vertices --mass fixed --iterations 0 | cut -d' ' -f1)" \
-    "$(run --vary vertices --mass fixed)" "$(run --vary center-of-mass)"
+  printf '%-22s %-12s %-24s %-24s %-24s\n' "D3_$d" "$(run --vary vertices --mass fixed --iterations 0 | cut -d' ' -f1)" \
+    "$(run --vary vertices --mass fixed)" "$(run --vary vertices --mass fixed --min-edge 0 --min-face 0)" \
+    "$(run --vary center-of-mass)"
 done
