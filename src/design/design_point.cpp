@@ -138,7 +138,8 @@ std::optional<Point> trial_point(const Point& at, const Eigen::VectorXd& d, Mass
       ++step.degenerate;
       return std::nullopt;
     }
-    for (std::size_t i = 0; i < points.size(); ++i) moved = std::max(moved, (points[i] - at.points[i]).norm());
+    for (std::size_t i = 0; i < points.size(); ++i)
+      moved = std::max(moved, (points[i] - at.points[i]).norm());
   } else if (shape == ShapeFreedom::faces) {
     for (std::size_t i = 0; i < planes.size(); ++i) {
       const Vec3 p = planes[i] + d.segment<3>(3 * static_cast<Eigen::Index>(i));

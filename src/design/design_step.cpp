@@ -12,7 +12,7 @@
 namespace repose::detail {
 
 namespace {
-constexpr int kActivePasses = 4;  // re-solves of a step as vertices reach their move bound
+constexpr int kActivePasses = 4;      // re-solves of a step as vertices reach their move bound
 constexpr double kFlatRidge = 1e-10;  // × λ: the flat faces' rows' ridge (an infinite weight, kept solvable)
 }  // namespace
 
@@ -97,9 +97,8 @@ Eigen::VectorXd lm_step(Eigen::MatrixXd jac, const Eigen::VectorXd& residual, do
   // Flat faces stay flat to first order: their rows C join the outcomes' with an infinite weight (the limit
   // of a weight μ → ∞ is the ridge λ/μ → 0 on their diagonal; a tiny one keeps dependent rows solvable).
   // Scaled variables are the unscaled ones times L throughout, so C's rows serve as they are.
-  Eigen::MatrixXd flat = shape == ShapeFreedom::vertices
-                             ? flatness_rows(bounds.flat, at.points, jac.cols())
-                             : Eigen::MatrixXd(0, jac.cols());
+  Eigen::MatrixXd flat = shape == ShapeFreedom::vertices ? flatness_rows(bounds.flat, at.points, jac.cols())
+                                                         : Eigen::MatrixXd(0, jac.cols());
   const Eigen::Index outcomes = jac.rows(), rows = outcomes + flat.rows();
   Eigen::VectorXd ridge = Eigen::VectorXd::Constant(rows, lambda);
   ridge.tail(flat.rows()).setConstant(kFlatRidge * lambda);

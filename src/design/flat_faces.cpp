@@ -47,11 +47,12 @@ std::vector<FlatFace> flat_faces(const ConvexHull& hull) {
     // The widest triangle's corners span the plane best: the first vertex, the one farthest from it, the one
     // farthest from their line.
     const int a = f.loop[0];
-    const int b = *std::max_element(f.loop.begin(), f.loop.end(),
-                                    [&](int p, int q) { return (at(p) - at(a)).norm() < (at(q) - at(a)).norm(); });
+    const int b = *std::max_element(f.loop.begin(), f.loop.end(), [&](int p, int q) {
+      return (at(p) - at(a)).norm() < (at(q) - at(a)).norm();
+    });
     const auto spread = [&](int p) { return (at(b) - at(a)).cross(at(p) - at(a)).norm(); };
-    const int c = *std::max_element(f.loop.begin(), f.loop.end(),
-                                    [&](int p, int q) { return spread(p) < spread(q); });
+    const int c =
+        *std::max_element(f.loop.begin(), f.loop.end(), [&](int p, int q) { return spread(p) < spread(q); });
     FlatFace face{a, b, c};
     for (const int v : f.loop)
       if (v != a && v != b && v != c) face.push_back(v);
@@ -87,7 +88,8 @@ Eigen::MatrixXd flatness_rows(const std::vector<FlatFace>& faces, const std::vec
     distance(points, all[r], grad);
     const int at[4] = {all[r].a, all[r].b, all[r].c, all[r].j};
     for (int k = 0; k < 4; ++k)
-      rows.block<1, 3>(static_cast<Eigen::Index>(r), 3 * static_cast<Eigen::Index>(at[k])) += grad[k].transpose();
+      rows.block<1, 3>(static_cast<Eigen::Index>(r), 3 * static_cast<Eigen::Index>(at[k])) +=
+          grad[k].transpose();
   }
   return rows;
 }
@@ -99,7 +101,8 @@ bool flatten(std::vector<Vec3>& points, const std::vector<FlatFace>& faces, doub
   for (int round = 0; round <= kFlattenRounds; ++round) {
     Eigen::VectorXd off(static_cast<Eigen::Index>(all.size()));
     Vec3 grad[4];
-    for (std::size_t r = 0; r < all.size(); ++r) off[static_cast<Eigen::Index>(r)] = distance(points, all[r], grad);
+    for (std::size_t r = 0; r < all.size(); ++r)
+      off[static_cast<Eigen::Index>(r)] = distance(points, all[r], grad);
     if (off.cwiseAbs().maxCoeff() <= tolerance) return true;
     if (round == kFlattenRounds) break;
     // The least move that zeroes the linearised distances (dependent constraints, e.g. two faces sharing
@@ -108,7 +111,8 @@ bool flatten(std::vector<Vec3>& points, const std::vector<FlatFace>& faces, doub
     solve.setThreshold(1e-10);  // before compute: Eigen applies it while decomposing
     solve.compute(flatness_rows(faces, points, columns));
     const Eigen::VectorXd move = solve.solve(-off);
-    for (std::size_t i = 0; i < points.size(); ++i) points[i] += move.segment<3>(3 * static_cast<Eigen::Index>(i));
+    for (std::size_t i = 0; i < points.size(); ++i)
+      points[i] += move.segment<3>(3 * static_cast<Eigen::Index>(i));
   }
   return false;
 }

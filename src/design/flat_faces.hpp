@@ -1,8 +1,9 @@
-// Flat faces in `--vary vertices`: a hull face of four or more vertices is a kink of the probabilities (moving
-// one of its vertices off its plane folds it one way or the other, with different one-sided derivatives), so
-// the design keeps such faces flat. To first order each step stays on the faces' planes (constraint rows in
-// the step's solve, design_step.cpp); after it the points are put back on them exactly (Gauss–Newton, the
-// least move), so the hull keeps the face whole and the next gradient is its true derivative.
+// Flat faces in `--vary vertices`: a hull face of four or more vertices is a kink of the probabilities
+// (moving one of its vertices off its plane folds it one way or the other, with different one-sided
+// derivatives), so the design keeps such faces flat. To first order each step stays on the faces' planes
+// (constraint rows in the step's solve, design_step.cpp); after it the points are put back on them exactly
+// (Gauss–Newton, the least move), so the hull keeps the face whole and the next gradient is its true
+// derivative.
 #pragma once
 
 #include <Eigen/Core>

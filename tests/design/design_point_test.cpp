@@ -1,6 +1,8 @@
 // Design points and flat faces (src/design/design_point.hpp, flat_faces.hpp): the Jacobian's columns belong
 // to the design's own points even when some lie inside the hull, and a flat face stays flat, so that the
 // probabilities' one-sided derivatives along a step agree with the Jacobian on both sides.
+#include "../../src/design/design_point.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,7 +11,6 @@
 #include <random>
 #include <vector>
 
-#include "../../src/design/design_point.hpp"
 #include "../../src/design/flat_faces.hpp"
 #include "repose/design/design.hpp"
 #include "repose/design/target.hpp"
@@ -72,7 +73,8 @@ TEST(DesignPoint, JacobianColumnsBelongToTheirPointsWhenSomeAreInsideTheHull) {
         const detail::Point x = point(q, options);
         same = same && x.landscape.face_rest == at.landscape.face_rest &&
                x.particle.hull.faces.size() == at.particle.hull.faces.size();
-        return Eigen::Map<const Eigen::VectorXd>(x.achieved.data(), static_cast<Eigen::Index>(x.achieved.size()))
+        return Eigen::Map<const Eigen::VectorXd>(x.achieved.data(),
+                                                 static_cast<Eigen::Index>(x.achieved.size()))
             .eval();
       };
       const Eigen::VectorXd fd = (8 * (moved(1) - moved(-1)) - (moved(2) - moved(-2))) / (12 * h);
@@ -95,8 +97,8 @@ TEST(DesignPoint, JacobianColumnsBelongToTheirPointsWhenSomeAreInsideTheHull) {
 // A cube's points jittered by 1e-3·L are put back on planes: each face's four corners coplanar to round-off,
 // so the hull is a hexahedron of six quadrilaterals again; the move is of the jitter's order.
 TEST(FlatFaces, FlattenPutsEachFacesCornersBackOnAPlane) {
-  const ConvexHull cube = compute_convex_hull({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0},
-                                               {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}});
+  const ConvexHull cube = compute_convex_hull(
+      {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}});
   const std::vector<detail::FlatFace> flat = detail::flat_faces(cube);
   ASSERT_EQ(flat.size(), 6u);
   std::mt19937 rng(3);
@@ -140,13 +142,15 @@ TEST(FlatFaces, AStepWithinTheFacesPlanesHasOneDerivative) {
     const Eigen::VectorXd rate = jac * d;
     for (const double s : {1.0, -1.0}) {
       std::vector<Vec3> q = at.points;
-      for (std::size_t i = 0; i < q.size(); ++i) q[i] += s * t * d.segment<3>(3 * static_cast<Eigen::Index>(i));
+      for (std::size_t i = 0; i < q.size(); ++i)
+        q[i] += s * t * d.segment<3>(3 * static_cast<Eigen::Index>(i));
       ASSERT_TRUE(detail::flatten(q, flat, 1e-14 * at.particle.length));
       DesignTarget target = at.target;
       const detail::Point x = detail::evaluate(q, {}, at.com, "moved", target, options);
       ASSERT_EQ(x.particle.hull.faces.size(), 6u);
       for (Eigen::Index o = 0; o < rate.size(); ++o) {
-        const double one_sided = s * (x.achieved[static_cast<std::size_t>(o)] - at.achieved[static_cast<std::size_t>(o)]) / t;
+        const double one_sided =
+            s * (x.achieved[static_cast<std::size_t>(o)] - at.achieved[static_cast<std::size_t>(o)]) / t;
         EXPECT_NEAR(one_sided, rate[o], 1e-4 * (rate.cwiseAbs().maxCoeff() + 1e-3))
             << "trial " << trial << " side " << s << " outcome " << o;
       }

@@ -40,7 +40,7 @@ struct DesignOptions {
   /// Vertices: the start's faces of four or more vertices stay flat (each is a kink of the probabilities
   /// otherwise: moving one vertex folds it one way or the other). False lets them fold.
   bool keep_faces_flat = true;
-  double max_step = 0.05;       ///< × L: the most any shape variable moves in one iteration (a trust region)
+  double max_step = 0.05;  ///< × L: the most any shape variable moves in one iteration (a trust region)
   /// × L: shape steps are smooth over about this distance (a Sobolev metric; 0: every variable on its own).
   double smoothing = 0.1;
   double tolerance = 1e-4;   ///< done when every outcome is within this of its target
