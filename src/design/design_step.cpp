@@ -4,6 +4,7 @@
 #include <Eigen/Cholesky>
 #include <cmath>
 #include <map>
+#include <set>
 #include <vector>
 
 #include "face_planes.hpp"
@@ -12,8 +13,65 @@
 namespace repose::detail {
 
 namespace {
-constexpr int kActivePasses = 4;      // re-solves of a step as vertices reach their move bound
+constexpr int kActivePasses = 6;      // re-solves of a step as vertices, edges and faces reach their bounds
 constexpr double kFlatRidge = 1e-10;  // × λ: the flat faces' rows' ridge (an infinite weight, kept solvable)
+constexpr double kPrintableMargin = 1e-3;  // a held edge or face is kept this much (relative) above its bound
+
+// Rows (over the scaled variables) and targets that keep each hull edge and face that the step `d` would take
+// below its printability bound at kPrintableMargin above it instead, to first order (vertices): the edge's
+// change u·(d_a − d_b) and the face's ½ n̂ × (v_prev − v_next) · d_i, summed over its loop.
+struct Held {
+  std::set<std::pair<int, int>> edges;  // hull vertex pairs
+  std::set<int> faces;
+};
+void hold_printable(const Point& at, const Bounds& bounds, double length, const Eigen::VectorXd& d,
+                    Held& held, Eigen::MatrixXd& rows, Eigen::VectorXd& targets) {
+  const ConvexHull& hull = at.particle.hull;
+  const auto point = [&](int v) {
+    return 3 * static_cast<Eigen::Index>(at.design_index[static_cast<std::size_t>(v)]);
+  };
+  std::vector<std::pair<Eigen::RowVectorXd, double>> add;
+  for (std::size_t v = 0; v < hull.vertices.size(); ++v)
+    for (const int w : hull.neighbors(static_cast<int>(v))) {
+      if (w < static_cast<int>(v) || held.edges.count({static_cast<int>(v), w}) != 0) continue;
+      const Vec3 edge = hull.vertices[v] - hull.vertices[static_cast<std::size_t>(w)];
+      const Vec3 u = edge.normalized();
+      const Eigen::Index a = point(static_cast<int>(v)), b = point(w);
+      const double change = u.dot(Vec3(d.segment<3>(a) - d.segment<3>(b))) * length;
+      const double floor = bounds.min_edge * (1 + kPrintableMargin);
+      if (edge.norm() + change >= floor) continue;
+      Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(d.size());
+      row.segment<3>(a) = u.transpose();
+      row.segment<3>(b) = -u.transpose();
+      add.emplace_back(row, (floor - edge.norm()) / length);
+      held.edges.insert({static_cast<int>(v), w});
+    }
+  for (std::size_t f = 0; f < hull.faces.size(); ++f) {
+    if (held.faces.count(static_cast<int>(f)) != 0) continue;
+    const HullFace& face = hull.faces[f];
+    Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(d.size());
+    const std::size_t k = face.loop.size();
+    for (std::size_t i = 0; i < k; ++i) {
+      const Vec3& prev = hull.vertices[static_cast<std::size_t>(face.loop[(i + k - 1) % k])];
+      const Vec3& next = hull.vertices[static_cast<std::size_t>(face.loop[(i + 1) % k])];
+      row.segment<3>(point(face.loop[i])) += (0.5 * face.normal.cross(prev - next)).transpose();
+    }
+    const double change = row.dot(d) * length;  // ∂A/∂x · Δx, Δx = d·L
+    const double floor = bounds.min_area * (1 + kPrintableMargin);
+    if (face.area + change >= floor) continue;
+    // Dimensionless: ∂A/∂s · d = (floor − A), s = x/L, divided by L².
+    add.emplace_back(row / length, (floor - face.area) / (length * length));
+    held.faces.insert(static_cast<int>(f));
+  }
+  if (add.empty()) return;
+  const Eigen::Index old = rows.rows();
+  rows.conservativeResize(old + static_cast<Eigen::Index>(add.size()), d.size());
+  targets.conservativeResize(old + static_cast<Eigen::Index>(add.size()));
+  for (std::size_t r = 0; r < add.size(); ++r) {
+    rows.row(old + static_cast<Eigen::Index>(r)) = add[r].first;
+    targets[old + static_cast<Eigen::Index>(r)] = add[r].second;
+  }
+}
 }  // namespace
 
 // The shape's metric M = I + αΛ over its variables (per coordinate), Λ the graph Laplacian of the hull's
@@ -97,22 +155,28 @@ Eigen::VectorXd lm_step(Eigen::MatrixXd jac, const Eigen::VectorXd& residual, do
   // Flat faces stay flat to first order: their rows C join the outcomes' with an infinite weight (the limit
   // of a weight μ → ∞ is the ridge λ/μ → 0 on their diagonal; a tiny one keeps dependent rows solvable).
   // Scaled variables are the unscaled ones times L throughout, so C's rows serve as they are.
+  // Edges and faces the step would take below their printability bounds are held at them the same way
+  // (rows with a target: the change that leaves them just above the bound).
   Eigen::MatrixXd flat = shape == ShapeFreedom::vertices ? flatness_rows(bounds.flat, at.points, jac.cols())
                                                          : Eigen::MatrixXd(0, jac.cols());
-  const Eigen::Index outcomes = jac.rows(), rows = outcomes + flat.rows();
-  Eigen::VectorXd ridge = Eigen::VectorXd::Constant(rows, lambda);
-  ridge.tail(flat.rows()).setConstant(kFlatRidge * lambda);
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(rows);
-  rhs.head(outcomes) = residual;
+  Eigen::VectorXd targets = Eigen::VectorXd::Zero(flat.rows());
+  Held printable;
   for (int pass = 0; pass < kActivePasses; ++pass) {
+    const Eigen::Index outcomes = jac.rows(), rows = outcomes + flat.rows();
     Eigen::MatrixXd all(rows, jac.cols());
     all << jac, flat;
+    Eigen::VectorXd ridge = Eigen::VectorXd::Constant(rows, lambda);
+    ridge.tail(flat.rows()).setConstant(kFlatRidge * lambda);
+    Eigen::VectorXd rhs(rows);
+    rhs << residual, -targets;
     const Eigen::MatrixXd g = apply_inverse(metric, all.transpose());
     Eigen::MatrixXd a = all * g;
     a.diagonal() += ridge;
     d = -(g * a.ldlt().solve(rhs));
     if (shape == ShapeFreedom::none) break;
-    bool changed = false;
+    const Eigen::Index before = flat.rows();
+    if (shape == ShapeFreedom::vertices) hold_printable(at, bounds, length, d, printable, flat, targets);
+    bool changed = flat.rows() != before;
     for (std::size_t i = 0; i < bounds.origin.size(); ++i) {
       // The bounded point (a vertex, or a plane's foot), and the direction in this variable's space that
       // moves it outward.

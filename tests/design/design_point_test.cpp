@@ -188,5 +188,68 @@ TEST(FlatFaces, TheStepSolvesWithinTheFacesPlanes) {
   EXPECT_GT((c * free).norm(), 1e-3 * free.norm());  // 8e-3 here: six orders above the constrained step
 }
 
+// The printability bounds are held in the step: with the bounds at the box's own smallest face and shortest
+// edge, the step's first-order change (a finite difference of the hull moved by 1e-6 of the step, faces
+// matched by normal; the faces kept flat) leaves every face and edge at or above its bound, while the step
+// without the bounds takes some below. Tolerance: 1e-6 of the bound (the difference's truncation, ~1e-6 of
+// the change).
+TEST(FlatFaces, ThePrintabilityBoundsHoldTheStep) {
+  std::vector<Vec3> corners;
+  for (const double x : {-0.5, 0.5})
+    for (const double y : {-0.55, 0.55})
+      for (const double z : {-0.45, 0.45}) corners.emplace_back(x + 0.03, y, z - 0.02);
+  const detail::Point at = point(corners, every_face());
+  const double length = at.particle.length;
+  Eigen::MatrixXd jac = detail::jacobian(at, MassModel::fixed, ShapeFreedom::vertices) * length;
+  jac.rightCols<3>().setZero();
+  Eigen::VectorXd residual(static_cast<Eigen::Index>(at.achieved.size()));
+  for (Eigen::Index o = 0; o + 1 < residual.size(); ++o)
+    residual[o] = at.achieved[static_cast<std::size_t>(o)] -
+                  at.target.outcomes[static_cast<std::size_t>(o)].probability;
+  residual[residual.size() - 1] = at.achieved.back();
+  const std::vector<detail::FlatFace> flat = detail::flat_faces(at.particle.hull);
+  double least_area = INFINITY, least_edge = INFINITY;
+  for (const HullFace& f : at.particle.hull.faces) least_area = std::min(least_area, f.area);
+  for (std::size_t v = 0; v < at.particle.hull.vertices.size(); ++v)
+    for (const int w : at.particle.hull.neighbors(static_cast<int>(v)))
+      least_edge = std::min(
+          least_edge,
+          (at.particle.hull.vertices[v] - at.particle.hull.vertices[static_cast<std::size_t>(w)]).norm());
+  // The least face area and edge length after the step, to first order.
+  auto after = [&](const Eigen::VectorXd& d) {
+    const double eps = 1e-6;
+    std::vector<Vec3> q = at.points;
+    for (std::size_t i = 0; i < q.size(); ++i)
+      q[i] += eps * length * d.segment<3>(3 * static_cast<Eigen::Index>(i));
+    EXPECT_TRUE(detail::flatten(q, flat, 1e-15));  // the faces' second-order fold, so that they stay whole
+    const ConvexHull moved = compute_convex_hull(q);
+    const ConvexHull here = compute_convex_hull(at.points);
+    double area = INFINITY, edge = INFINITY;
+    for (const HullFace& f : here.faces)
+      for (const HullFace& g : moved.faces)
+        if (g.normal.dot(f.normal) > 1 - 1e-6) area = std::min(area, f.area + (g.area - f.area) / eps);
+    for (std::size_t v = 0; v < here.vertices.size(); ++v)
+      for (const int w : here.neighbors(static_cast<int>(v))) {
+        const double was = (here.vertices[v] - here.vertices[static_cast<std::size_t>(w)]).norm();
+        const double now = (moved.vertices[v] - moved.vertices[static_cast<std::size_t>(w)]).norm();
+        edge = std::min(edge, was + (now - was) / eps);
+      }
+    return std::make_pair(area, edge);
+  };
+  detail::Bounds free{0, 10 * length, 0, 0, at.points, flat};
+  const auto unbounded =
+      after(detail::lm_step(jac, residual, 1e-6, at, free, ShapeFreedom::vertices, length, nullptr));
+  ASSERT_TRUE(unbounded.first < least_area * 0.99 || unbounded.second < least_edge * 0.99);
+  detail::Bounds bounds{0, 10 * length, least_edge, least_area, at.points, flat};
+  const Eigen::VectorXd d =
+      detail::lm_step(jac, residual, 1e-6, at, bounds, ShapeFreedom::vertices, length, nullptr);
+  ASSERT_GT(d.norm(), 1e-3);
+  const auto held = after(d);
+  EXPECT_GE(held.first, least_area * (1 - 1e-6));
+  EXPECT_GE(held.second, least_edge * (1 - 1e-6));
+  std::printf("least face %g -> %g (unbounded %g); least edge %g -> %g (unbounded %g)\n", least_area,
+              held.first, unbounded.first, least_edge, held.second, unbounded.second);
+}
+
 }  // namespace
 }  // namespace repose

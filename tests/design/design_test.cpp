@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <random>
 #include <string>
@@ -135,9 +136,10 @@ TEST(DesignQuasiStatic, AFineHullMovesAsASmoothDeformation) {
   EXPECT_GT(rough.max_error(), 2 * options.tolerance) << rough.stop;
 }
 
-// The printability bounds hold: with every face at least 0.15·L² the pentagonal prism's 1/16 sides cannot
-// shrink as the binomial target needs, so the design stops short of it — and no face of the result is
-// smaller than the bound (the start's smallest face is larger, so the bound is the option's).
+// The printability bounds hold: with every face at least 0.15·L² (the start's smallest is 0.177·L², so the
+// bound is the option's) the pentagonal prism's 1/16 sides cannot shrink as freely as the binomial target
+// would have them, and no face of the result is smaller than the bound. (The step holds faces at the bound,
+// FlatFaces.ThePrintabilityBoundsHoldTheStep; here the design still meets the target, converged.)
 TEST(DesignQuasiStatic, TheMinimumFaceBoundHolds) {
   std::vector<Vec3> normals;
   for (int k = 0; k < 5; ++k) {
@@ -154,10 +156,16 @@ TEST(DesignQuasiStatic, TheMinimumFaceBoundHolds) {
   for (const HullFace& f : start.hull.faces) smallest = std::min(smallest, f.area);
   ASSERT_GT(smallest, options.min_face_area * start.length * start.length);
   const DesignResult r = design_quasi_static(start, target, options);
-  EXPECT_FALSE(r.reached());
   const Particle design = built(r);
-  for (const HullFace& f : design.hull.faces)
-    EXPECT_GE(f.area, options.min_face_area * start.length * start.length * (1 - 1e-6));
+  const double bound = options.min_face_area * start.length * start.length;
+  double least = INFINITY;
+  for (const HullFace& f : design.hull.faces) {
+    EXPECT_GE(f.area, bound * (1 - 1e-6));
+    least = std::min(least, f.area);
+  }
+  EXPECT_TRUE(r.reached()) << r.stop << " " << r.max_error();
+  std::printf("stop %s, max error %g, smallest face %g of the bound\n", r.stop.c_str(), r.max_error(),
+              least / bound);
 }
 
 // An unreachable target gets the best achievable answer, said so, in bounded time: the cube's centre of mass
