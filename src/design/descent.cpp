@@ -74,9 +74,15 @@ Point start_point(const DesignSetup& setup, DesignTarget target, const DesignOpt
   return evaluate(start.hull.vertices, face_planes(start.hull), Vec3::Zero(), start.name, target, options);
 }
 
-Point retarget(const Point& at, const DesignTarget& target, const DesignSetup& setup,
-               const DesignOptions& options) {
-  return evaluate(at.points, at.planes, at.com, setup.start->name, target, options);
+Point retarget(const Point& at, const DesignTarget& target) {
+  // The same hull, landscape and outcome faces; only the probabilities asked for change.
+  Point out = at;
+  out.target = target;
+  for (std::size_t k = 0; k < out.target.outcomes.size(); ++k)
+    out.target.outcomes[k].faces = at.target.outcomes[k].faces;
+  out.target.unassigned_faces = at.target.unassigned_faces;
+  score(out);
+  return out;
 }
 
 Descent descend(Point from, const DesignTarget& target, const DesignSetup& setup,

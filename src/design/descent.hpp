@@ -28,9 +28,8 @@ DesignSetup design_setup(const Particle& start, const DesignOptions& options);
 // --outcome-angle if an outcome gets no face).
 Point start_point(const DesignSetup& setup, DesignTarget target, const DesignOptions& options);
 
-// `at` evaluated again for another target of the same outcomes (another probability per outcome).
-Point retarget(const Point& at, const DesignTarget& target, const DesignSetup& setup,
-               const DesignOptions& options);
+// `at` scored for another target of the same outcomes (another probability per outcome).
+Point retarget(const Point& at, const DesignTarget& target);
 
 struct Descent {
   Point at;  // the last accepted point

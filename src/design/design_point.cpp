@@ -67,6 +67,11 @@ Point evaluate(std::vector<Vec3> points, std::vector<Vec3> planes, const Vec3& c
   p.landscape = compute_rest_landscape(p.particle);
   p.target = target;
   assign_outcome_faces(p.target, p.particle.hull, options.outcome_angle, "--outcome-angle");
+  score(p);
+  return p;
+}
+
+void score(Point& p) {
   p.achieved = outcome_probabilities(p.target, p.landscape.basin_probability);
   std::vector<int> count(p.target.outcomes.size() + 1, 0);
   for (std::size_t f = 0; f < p.landscape.face_rest.size(); ++f) {
@@ -78,14 +83,15 @@ Point evaluate(std::vector<Vec3> points, std::vector<Vec3> planes, const Vec3& c
     }
     ++count[o];
   }
+  p.stable.clear();
   for (std::size_t o = 0; o < count.size(); ++o) p.stable.insert({static_cast<int>(o), count[o]});
+  p.objective = p.max_error = 0;
   for (std::size_t o = 0; o < p.achieved.size(); ++o) {
-    const double t = o < target.outcomes.size() ? target.outcomes[o].probability : 0.0;
+    const double t = o < p.target.outcomes.size() ? p.target.outcomes[o].probability : 0.0;
     const double r = p.achieved[o] - t;
     p.objective += r * r;
     p.max_error = std::max(p.max_error, std::abs(r));
   }
-  return p;
 }
 // The outcomes' (then the unassigned faces') probabilities' Jacobian over the design variables: 3 per shape
 // variable (a design vertex, zero for one not on the hull; or a plane), then the centre of mass's 3 (the

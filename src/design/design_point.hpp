@@ -57,6 +57,10 @@ double smallest_face(const ConvexHull& hull);
 Point evaluate(std::vector<Vec3> points, std::vector<Vec3> planes, const Vec3& com, const std::string& name,
                const DesignTarget& target, const DesignOptions& options, const ConvexHull* hull = nullptr);
 
+// The point's outcomes' probabilities, stable faces per outcome and objective, from its landscape and its
+// target (whose faces are assigned).
+void score(Point& p);
+
 // The outcomes' (then the unassigned faces') probabilities' Jacobian over the design variables: 3 per shape
 // variable (a design vertex, zero for one not on the hull; or a plane), then the centre of mass's 3.
 Eigen::MatrixXd jacobian(const Point& p, MassModel mass, ShapeFreedom shape);

@@ -140,11 +140,10 @@ TossDesignResult design_for_toss(const Particle& start, const DesignTarget& targ
   auto iterate = [&](const Vector& q_goal, std::uint64_t size, const char* kind, const detail::Point& from) {
     const DesignTarget surrogate = with_probabilities(goal, q_goal);
     Iterate it;
-    it.descent = detail::descend(detail::retarget(from, surrogate, setup, shape), surrogate, setup, shape);
+    it.descent = detail::descend(detail::retarget(from, surrogate), surrogate, setup, shape);
     it.step.inner_iterations = static_cast<int>(it.descent.history.size());
     if (it.descent.stop != "converged" && &from != &first) {
-      detail::Descent again =
-          detail::descend(detail::retarget(first, surrogate, setup, shape), surrogate, setup, shape);
+      detail::Descent again = detail::descend(detail::retarget(first, surrogate), surrogate, setup, shape);
       it.step.inner_iterations += static_cast<int>(again.history.size());
       it.step.inner_restarted = true;
       if (again.at.objective < it.descent.at.objective) it.descent = std::move(again);
