@@ -9,9 +9,11 @@
 #include "bindings.hpp"
 #include "interruptible.hpp"
 #include "repose/design/design_json.hpp"
+#include "repose/design/design_report.hpp"
 #include "repose/design/target.hpp"
 #include "repose/design/toss_design.hpp"
 #include "repose/error.hpp"
+#include "repose/output/files.hpp"
 
 namespace repose::python {
 
@@ -142,6 +144,12 @@ py::tuple design_run(const PyParticle& p, const std::string& target_json, const 
     toss = kwargs["toss"].cast<py::dict>();
     kwargs.attr("pop")("toss");
   }
+  std::string html;  // the report's path, if any (the CLI's --html)
+  if (kwargs.contains("html")) {
+    html = py::str(kwargs["html"]);
+    if (html.empty()) throw Error("design: html must be a file path");
+    kwargs.attr("pop")("html");
+  }
   const DesignOptions options = design_options(kwargs);
   const DesignTarget target = parse_design_target(target_json, target_name);
   const std::shared_ptr<const Particle> particle = p.model;
@@ -161,6 +169,8 @@ py::tuple design_run(const PyParticle& p, const std::string& target_json, const 
     r = design_quasi_static(*particle, target, options);
     json = design_json(particle->name, target, options, r);
   }
+  if (!html.empty())
+    write_file_atomically(html, design_report_html(particle->name, target, options, r, json));
   std::vector<std::array<double, 3>> vertices;
   for (const Vec3& v : r.mesh.vertices) vertices.push_back({v.x(), v.y(), v.z()});
   std::vector<std::array<int, 3>> triangles;

@@ -326,17 +326,22 @@ def test_a_toss_with_friction_reports_its_whole_ledger_and_every_fallback():
     assert not hasattr(paper, "fallbacks")
 
 
-def test_design_meets_a_cube_target_and_rejects_bad_options():
+def test_design_meets_a_cube_target_and_rejects_bad_options(tmp_path):
     target = [[[0, 0, -1], 0.4], [[0, 0, 1], 0.12], [[1, 0, 0], 0.12], [[-1, 0, 0], 0.12], [[0, 1, 0], 0.12],
               [[0, -1, 0], 0.12]]
-    d = repose.design(repose.Particle.shape("box:x=1,y=1,z=1"), target)
+    report = tmp_path / "design.html"
+    d = repose.design(repose.Particle.shape("box:x=1,y=1,z=1"), target, html=str(report))
     assert d.reached and d.max_error < 1e-4
+    page = report.read_text(encoding="utf-8")
+    assert page.lower().startswith("<!doctype html>") and "box:x=1,y=1,z=1" in page
     assert abs(d.achieved()[0] - 0.4) < 1e-4
     assert d.vertices.shape[1] == 3 and d.triangles.shape[1] == 3 and len(d.triangles) >= 12
     with pytest.raises(ValueError, match="max_mvoe"):
         repose.design(repose.Particle.shape("box:x=1,y=1,z=1"), target, max_mvoe=0.2)
     with pytest.raises(ValueError, match="sum to"):
         repose.design(repose.Particle.shape("box:x=1,y=1,z=1"), [[[0, 0, 1], 0.5]])
+    with pytest.raises(ValueError, match="keep_faces_flat"):
+        repose.design(repose.Particle.shape("box:x=1,y=1,z=1"), target, keep_faces_flat=1)
 
 
 def test_design_for_the_toss_reports_its_checks_and_rejects_bad_toss_options():
