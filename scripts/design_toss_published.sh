@@ -25,4 +25,37 @@ for name in ${NAMES:-Binom2 Binom3 Binom4 2D6_hendecahedron_V1 2D6_hendecahedron
     --restitution 0.1 --friction 0.3 --drops "$drops" --check-drops "$check" --out "$out/$name" \
     --html "$out/$name.html"
 done
+# The hendecahedra pooled by target (the faces designed for k/36: labels k+1 and 13-k), so that no face
+# labelling is assumed: the target, their measured counts per series (counts.csv), the tossed model's
+# prediction for their die (the quasi-static design: theirs refined) and for our tossed design, on the check
+# drops.
+python3 - "$data" "$out" <<'PY'
+import collections, csv, json, os, sys
+data, out = sys.argv[1], sys.argv[2]
+rows = list(csv.DictReader(open(f"{data}/counts.csv")))
+for name, obj in [("2D6_hendecahedron_V1", "hendecahedron_2d6_design_v2"),
+                  ("2D6_hendecahedron_V2", "hendecahedron_2d6_design_v5")]:
+    path = f"{out}/{name}/design.json"
+    if not os.path.exists(path):
+        continue
+    tossed = json.load(open(path))["tossed"]
+    targets = [p["probability"] for p in json.load(open(f"{data}/outcomes/{name}__final_normal_probs.json"))["pairs"]]
+    theirs, ours = collections.defaultdict(float), collections.defaultdict(float)
+    for i, t in enumerate(targets):
+        theirs[round(36 * t)] += tossed["check_quasi_static_design"]["probability"][i]
+        ours[round(36 * t)] += tossed["check"]["probability"][i]
+    series = collections.defaultdict(dict)
+    for r in rows:
+        if r["object"] == obj:
+            series[r["series"]][int(r["outcome"])] = int(r["exp_sample_count"])
+    print(f"\n{name} ({obj}); measured: " + ", ".join(f"{s} ({sum(c.values())})" for s, c in series.items()))
+    print("sums | target | measured | their die, tossed model | our tossed design, tossed model")
+    for k in range(1, 7):
+        labels = sorted({k + 1, 13 - k})
+        measured = ", ".join("%.3f" % (sum(c.get(l, 0) for l in labels) / sum(c.values())) for c in series.values())
+        print("%s | %.3f | %s | %.3f | %.3f" % ("/".join(map(str, labels)), k * len(labels) / 36, measured,
+                                                  theirs[k], ours[k]))
+    print("chi-square p on the check drops: their die %.3g, our design %.3g" %
+          (tossed["check_quasi_static_design"]["p_value"], tossed["check"]["p_value"]))
+PY
 echo "files in $out"
