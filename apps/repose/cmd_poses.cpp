@@ -47,9 +47,8 @@ struct PosesOptions {
   std::string method = "dynamic";
   PhysicsOptions physics;
   MeshCliOptions mesh;
-  double damping_ratio = 0.05;
-  double velocity_max = 0, spin_max = 0;  // tosses
-  double persistence = -1;                // fraction of L; < 0 = automatic
+  TossDistributionOptions toss;
+  double persistence = -1;  // fraction of L; < 0 = automatic
   bool full_settle = false;
   bool no_progress = false;
   std::string out_dir;
@@ -133,8 +132,6 @@ CampaignOptions campaign_options(const PosesOptions& o, const CLI::App& sub, int
         throw Error(std::string("poses: ") + option +
                     " has no effect with --method quasi-static (it sets the dynamic engine's drops); remove "
                     "it or use --method dynamic");
-  if (!std::isfinite(o.damping_ratio) || o.damping_ratio < 0)
-    throw Error("option --damping-ratio must be a finite number >= 0, got " + num(o.damping_ratio));
   if (given("--persistence") && (!std::isfinite(o.persistence) || o.persistence < 0))
     throw Error("option --persistence must be a finite number >= 0, got " + num(o.persistence));
   StudySettings& s = c.settings;
@@ -146,10 +143,9 @@ CampaignOptions campaign_options(const PosesOptions& o, const CLI::App& sub, int
   s.damping_given = given("--damping");
   if (!s.damping_given) s.params.damping = 0;  // set from the ratio once the particle is known
   validate(s.params);
-  s.damping_ratio = o.damping_ratio;
+  apply_toss_distribution(o.toss, s);
   s.persistence = given("--persistence") ? o.persistence : -1;
   s.decide_early = !o.full_settle;
-  s.toss = {o.velocity_max, o.spin_max};
   c.threads = threads;
   c.chunk = o.chunk;
   if (!o.out_dir.empty())
@@ -316,14 +312,7 @@ Command add_poses_command(CLI::App& app) {
   add_physics_options(*sub, o->physics, "Damping coefficient C of Eq 4 ({unit}); overrides --damping-ratio");
   add_mesh_options(*sub, o->mesh);
   add_impact_options(*sub, o->physics);
-  sub->add_option(
-      "--velocity-max", o->velocity_max,
-      "Tosses: drop i's centre-of-mass speed uniform in [0, V] in a random direction (length/time; "
-      "from drop i's own random stream)");
-  sub->add_option("--spin-max", o->spin_max,
-                  "Tosses: drop i's angular speed uniform in [0, W] about a random axis (rad/time)");
-  sub->add_option("--damping-ratio", o->damping_ratio,
-                  "Damping as C / (m*sqrt(g*L^3)) (default 0.05; the paper's ellipsoid used 0.063)");
+  add_toss_distribution_options(*sub, o->toss, "Tosses: ");
   sub->add_option("--persistence", o->persistence,
                   "Merge stable faces whose barrier is below this fraction of L into one pose (default 0, "
                   "0.01 for smooth particles)");

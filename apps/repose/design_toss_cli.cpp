@@ -53,12 +53,7 @@ void add_toss_options(CLI::App& sub, TossCliOptions& o) {
       sub, o.physics, CliGroup::physics,
       {{"damping", "Tossed: damping coefficient C of Eq 4 ({unit}); overrides --damping-ratio"}});
   add_impact_options(sub, o.physics);
-  sub.add_option(
-      "--velocity-max", o.velocity_max,
-      "Tossed: drop i's centre-of-mass speed uniform in [0, V] in a random direction (length/time)");
-  sub.add_option("--spin-max", o.spin_max,
-                 "Tossed: drop i's angular speed uniform in [0, W] about a random axis (rad/time)");
-  sub.add_option("--damping-ratio", o.damping_ratio, "Tossed: damping as C / (m*sqrt(g*L^3)) (default 0.05)");
+  add_toss_distribution_options(sub, o.toss, "Tossed: ");
   sub.add_option(
          "--drops", o.drops,
          "Tossed: drops per estimate, the same drops at every iterate (common random numbers; default "
@@ -84,8 +79,6 @@ TossDesignOptions toss_design_options(const TossCliOptions& o, const CLI::App& s
     throw Error("option --threads must be >= 0 (0 = all cores), got " + std::to_string(o.threads));
   if (o.iterations < 0)
     throw Error("option --toss-iterations must be >= 0, got " + std::to_string(o.iterations));
-  if (!std::isfinite(o.damping_ratio) || o.damping_ratio < 0)
-    throw Error("option --damping-ratio must be a finite number >= 0, got " + num(o.damping_ratio));
   TossDesignOptions out;
   out.shape = shape;
   out.max_iterations = o.iterations;
@@ -101,11 +94,7 @@ TossDesignOptions toss_design_options(const TossCliOptions& o, const CLI::App& s
   s.damping_given = given("--damping");
   if (!s.damping_given) s.params.damping = 0;  // from the ratio, once each design's particle is known
   validate(s.params);
-  s.damping_ratio = o.damping_ratio;
-  s.toss = {o.velocity_max, o.spin_max};
-  if (!(std::isfinite(o.velocity_max) && o.velocity_max >= 0) ||
-      !(std::isfinite(o.spin_max) && o.spin_max >= 0))
-    throw Error("options --velocity-max and --spin-max must be finite numbers >= 0");
+  apply_toss_distribution(o.toss, s);
   return out;
 }
 

@@ -14,7 +14,7 @@ namespace repose::cli {
 struct TossCliOptions {
   PhysicsOptions
       physics;  // --units, the engine's and the impacts' parameters (not --tolerance: the design's)
-  double velocity_max = 0, spin_max = 0, damping_ratio = 0.05;
+  TossDistributionOptions toss;
   std::uint64_t drops = 20000, check_drops = 10000, seed = 1;
   int threads = 0;
   int iterations = 12;

@@ -13,6 +13,7 @@
 #include "format.hpp"
 #include "repose/error.hpp"
 #include "repose/model/param_table.hpp"
+#include "repose/poses/study.hpp"
 
 namespace repose::cli {
 
@@ -105,6 +106,36 @@ inline void add_physics_options(CLI::App& sub, PhysicsOptions& o, const std::str
 /// Registers --restitution and --friction (impacts while airborne) on `sub`.
 inline void add_impact_options(CLI::App& sub, PhysicsOptions& o) {
   add_param_options(sub, o, CliGroup::impact);
+}
+
+/// The toss distribution and the damping ratio, as `repose poses` and `repose design --model tossed` take
+/// them.
+struct TossDistributionOptions {
+  double velocity_max = 0, spin_max = 0;  // the toss (length/time, rad/time)
+  double damping_ratio = 0.05;            // C / (m sqrt(g L^3)), unless --damping is given
+};
+
+/// Registers --velocity-max, --spin-max and --damping-ratio on `sub`; `prefix` begins each help text (what
+/// the options belong to, e.g. "Tossed: ").
+inline void add_toss_distribution_options(CLI::App& sub, TossDistributionOptions& o,
+                                          const std::string& prefix) {
+  sub.add_option(
+      "--velocity-max", o.velocity_max,
+      prefix +
+          "drop i's centre-of-mass speed uniform in [0, V] in a random direction (length/time; from "
+          "drop i's own random stream)");
+  sub.add_option("--spin-max", o.spin_max,
+                 prefix + "drop i's angular speed uniform in [0, W] about a random axis (rad/time)");
+  sub.add_option("--damping-ratio", o.damping_ratio,
+                 prefix + "damping as C / (m*sqrt(g*L^3)) (default 0.05; the paper's ellipsoid used 0.063)");
+}
+
+/// Checks the damping ratio (the toss's speeds are the study's to check) and sets both on `s`.
+inline void apply_toss_distribution(const TossDistributionOptions& o, StudySettings& s) {
+  if (!std::isfinite(o.damping_ratio) || o.damping_ratio < 0)
+    throw Error("option --damping-ratio must be a finite number >= 0, got " + num(o.damping_ratio));
+  s.damping_ratio = o.damping_ratio;
+  s.toss = {o.velocity_max, o.spin_max};
 }
 
 }  // namespace repose::cli
