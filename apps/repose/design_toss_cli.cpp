@@ -138,8 +138,11 @@ void print_toss_design(const DesignTarget& target, const TossDesignOptions& opti
             << "); every target inside its interval on the check drops: "
             << (tossed.all_within_ci95 ? "yes" : "no")
             << ", in its simultaneous interval (Bonferroni over the " << target.outcomes.size()
-            << " outcomes): " << (tossed.all_within_simultaneous ? "yes" : "no") << "; " << r.settles
-            << " tossed settles\n";
+            << " outcomes): " << (tossed.all_within_simultaneous ? "yes" : "no")
+            << "; within the fit's noise and the check's (the design was fitted on " << tossed.fit_drops
+            << " drops): " << (tossed.all_within_fit_and_check ? "yes" : "no")
+            << ", simultaneous: " << (tossed.all_within_fit_and_check_simultaneous ? "yes" : "no") << "; "
+            << r.settles << " tossed settles\n";
 }
 
 }  // namespace repose::cli

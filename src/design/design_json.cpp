@@ -89,6 +89,11 @@ nlohmann::json tossed_object(const TossedOutcomes& t) {
   j["p_value"] = t.p_value;
   j["all_within_ci95"] = t.all_within_ci95;
   j["all_within_simultaneous_ci95"] = t.all_within_simultaneous;
+  if (t.fit_drops > 0) {
+    j["fit_drops"] = t.fit_drops;
+    j["all_within_fit_and_check"] = t.all_within_fit_and_check;
+    j["all_within_fit_and_check_simultaneous"] = t.all_within_fit_and_check_simultaneous;
+  }
   return j;
 }
 

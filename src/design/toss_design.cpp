@@ -267,6 +267,8 @@ TossDesignResult design_for_toss(const Particle& start, const DesignTarget& targ
   const detail::Point& design = at.descent.at;
   result.check =
       detail::tossed_outcomes(design.particle, design.landscape, at.assigned, options.model, fresh);
+  detail::count_fit_noise(result.check, std::vector<double>(t.data(), t.data() + n),
+                          at.step.tossed.drops.size());
   result.check_quasi_static =
       detail::tossed_outcomes(quasi_static_point.particle, quasi_static_point.landscape,
                               with_probabilities(quasi_static_point.target, t), options.model, fresh);

@@ -19,6 +19,9 @@ TossedOutcomes tossed_outcomes(const Particle& particle, const RestLandscape& la
 TossedOutcomes summarise(DropRange drops, std::vector<std::uint64_t> counts,
                          const std::vector<double>& target);
 
+// Sets `check`'s fit_drops and its fit-and-check flags (TossedOutcomes) for a design fitted on `fit_drops`.
+void count_fit_noise(TossedOutcomes& check, const std::vector<double>& target, std::uint64_t fit_drops);
+
 // The Jacobian J (outcomes × outcomes) with J·dq ≈ dp over the columns of finite differences dq (changes of
 // the quasi-static probabilities, each summing to ~0) and dp (the tossed changes), least squares, acting on
 // changes that keep Σq = 1 alone (J·𝟙 = 0).

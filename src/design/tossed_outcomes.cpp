@@ -87,6 +87,31 @@ TossedOutcomes summarise(DropRange drops, std::vector<std::uint64_t> counts,
   return out;
 }
 
+void count_fit_noise(TossedOutcomes& check, const std::vector<double>& target, std::uint64_t fit_drops) {
+  const std::size_t outcomes = target.size();
+  check.fit_drops = fit_drops;
+  const double m = static_cast<double>(check.drops.size()), n = static_cast<double>(fit_drops);
+  bool each = fit_drops > 0 && check.drops.size() > 0 && check.counts[outcomes] == 0 &&
+              check.counts[outcomes + 1] == 0;
+  bool all = each;
+  const double z_all =
+      outcomes > 0 ? boost::math::quantile(boost::math::complement(boost::math::normal_distribution<double>(),
+                                                                   0.025 / static_cast<double>(outcomes)))
+                   : 1.959963984540054;
+  for (std::size_t k = 0; k < outcomes && each; ++k) {
+    const double t = target[k];
+    const double spread = std::sqrt(t * (1 - t) * (1 / n + 1 / m));
+    const double off = std::abs(check.probability[k] - t);
+    each = each && off <= 1.959963984540054 * spread;
+  }
+  for (std::size_t k = 0; k < outcomes && all; ++k) {
+    const double t = target[k];
+    all = std::abs(check.probability[k] - t) <= z_all * std::sqrt(t * (1 - t) * (1 / n + 1 / m));
+  }
+  check.all_within_fit_and_check = each;
+  check.all_within_fit_and_check_simultaneous = all;
+}
+
 }  // namespace detail
 
 TossedOutcomes tossed_outcomes(const Particle& particle, const DesignTarget& target, const TossModel& model,

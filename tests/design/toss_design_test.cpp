@@ -119,6 +119,22 @@ TEST(TossedOutcomes, ChiSquareAndIntervalsAgainstValuesWorkedByHand) {
   EXPECT_TRUE(wide.all_within_simultaneous);
   EXPECT_DOUBLE_EQ(elsewhere.probability[4], 1.0 / 102);
   EXPECT_EQ(elsewhere.ci95[0], wilson_interval(30, 102));
+  // The fit's noise counted (count_fit_noise): 40 / 40 / 20 of M = 100 against 0.3 / 0.5 / 0.2 for a
+  // design fitted on N = 100 drops: half-widths 1.96·sqrt(t(1 − t)(1/100 + 1/100)) = 0.1270, 0.1386, 0.1109
+  // (worked by hand), against the deviations 0.1, 0.1, 0 — all within, though 0.3 is outside the check's
+  // own Wilson interval; fitted on N = 10,000 the first half-width is 0.0902 < 0.1: not within. Bonferroni's
+  // z = 2.394 widens them (0.1551 for 0.3 at N = 100, 0.1102 at N = 10,000: within then).
+  TossedOutcomes fitted = off;
+  detail::count_fit_noise(fitted, target, 100);
+  EXPECT_FALSE(fitted.all_within_ci95);
+  EXPECT_TRUE(fitted.all_within_fit_and_check);
+  EXPECT_TRUE(fitted.all_within_fit_and_check_simultaneous);
+  EXPECT_EQ(fitted.fit_drops, 100u);
+  detail::count_fit_noise(fitted, target, 10000);
+  EXPECT_FALSE(fitted.all_within_fit_and_check);
+  EXPECT_TRUE(fitted.all_within_fit_and_check_simultaneous);
+  detail::count_fit_noise(fitted, target, 0);
+  EXPECT_FALSE(fitted.all_within_fit_and_check);
   // A landing on an outcome whose target is 0 rejects outright.
   const TossedOutcomes impossible = detail::summarise({0, 100}, {50, 49, 1, 0, 0}, {0.5, 0.5, 0.0});
   EXPECT_EQ(impossible.p_value, 0);

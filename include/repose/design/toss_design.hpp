@@ -57,6 +57,14 @@ struct TossedOutcomes {
   /// The same with simultaneous intervals: Wilson's at 1 − 0.05/outcomes each (Bonferroni), so that all of
   /// them hold together with probability ≥ 95 % (five 95 % intervals all hold only ~77 % of the time).
   bool all_within_simultaneous = false;
+  /// The tossed design's check only: the drops its design was fitted on (0 for any other estimate), and
+  /// whether every outcome's check lies within t ± z·sqrt(t(1 − t)(1/N_fit + 1/M)) of its target t, the
+  /// fit's own sampling noise counted with the check's (z = 1.96 each; Bonferroni's z for all together): a
+  /// design fitted to N drops is off its target by that sample's noise, so the check's own intervals cover
+  /// the target less often than they say (docs/inverse-design.md, "Design for the toss").
+  std::uint64_t fit_drops = 0;
+  bool all_within_fit_and_check = false;
+  bool all_within_fit_and_check_simultaneous = false;
 };
 
 struct TossDesignOptions {

@@ -102,7 +102,7 @@ REPORTS.design = (THREE, app) => {
         "p",
         { class: "hint" },
         `Checked on drops ${c.drops[0]}–${c.drops[1] - 1}, which the optimiser never saw. χ² against the target (${c.degrees_of_freedom} degrees of freedom): ` +
-          `quasi-static design p = ${fmt(q.p_value, 3)}, tossed design p = ${fmt(c.p_value, 3)}; every target inside its 95 % interval: ${c.all_within_ci95 ? "yes" : "no"}; inside its simultaneous interval (Bonferroni over the ${d.outcomes.length} outcomes): ${c.all_within_simultaneous_ci95 ? "yes" : "no"}.`,
+          `quasi-static design p = ${fmt(q.p_value, 3)}, tossed design p = ${fmt(c.p_value, 3)}; every target inside its 95 % interval: ${c.all_within_ci95 ? "yes" : "no"}; inside its simultaneous interval (Bonferroni over the ${d.outcomes.length} outcomes): ${c.all_within_simultaneous_ci95 ? "yes" : "no"}; within the fit's noise and the check's (fitted on ${c.fit_drops} drops): ${c.all_within_fit_and_check ? "yes" : "no"}, simultaneous: ${c.all_within_fit_and_check_simultaneous ? "yes" : "no"}.`,
       ),
     );
   }
