@@ -7,6 +7,7 @@
 #include <numbers>
 #include <optional>
 
+#include "attraction.hpp"
 #include "design_step.hpp"
 #include "face_planes.hpp"
 #include "repose/error.hpp"
@@ -107,10 +108,22 @@ Descent descend(Point from, const DesignTarget& target, const DesignSetup& setup
   auto system = [&](const Point& at) {
     System sys;
     sys.jac = jacobian(at, mass, shape);
-    if (!options.freedom.center_of_mass) sys.jac.rightCols<3>().setZero();
     sys.residual.resize(static_cast<Eigen::Index>(at.achieved.size()));
     for (Eigen::Index o = 0; o < sys.residual.size(); ++o)
       sys.residual[o] = at.achieved[static_cast<std::size_t>(o)] - goal[static_cast<std::size_t>(o)];
+    // Outcomes whose faces are all unstable: their attraction residuals and rows join (attraction.hpp).
+    if (std::any_of(at.attraction.begin(), at.attraction.end(), [](double a) { return a > 0; })) {
+      const Eigen::MatrixXd pull = attraction_rows(at, mass, shape);
+      for (std::size_t o = 0; o < at.attraction.size(); ++o) {
+        if (!(at.attraction[o] > 0)) continue;
+        const Eigen::Index row = sys.jac.rows();
+        sys.jac.conservativeResize(row + 1, Eigen::NoChange);
+        sys.jac.row(row) = pull.row(static_cast<Eigen::Index>(o));
+        sys.residual.conservativeResize(row + 1);
+        sys.residual[row] = at.attraction[o];
+      }
+    }
+    if (!options.freedom.center_of_mass) sys.jac.rightCols<3>().setZero();
     sys.scale = Eigen::VectorXd::Constant(sys.jac.cols(), shape == ShapeFreedom::faces ? 1 / length : length);
     sys.scale.tail<3>().setConstant(length);
     sys.jac = sys.jac * sys.scale.asDiagonal();

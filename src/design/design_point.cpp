@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "attraction.hpp"
 #include "basin_tape.hpp"
 #include "face_planes.hpp"
 #include "repose/error.hpp"
@@ -92,6 +93,8 @@ void score(Point& p) {
     p.objective += r * r;
     p.max_error = std::max(p.max_error, std::abs(r));
   }
+  p.attraction = attraction(p.particle, p.landscape, p.target);
+  for (const double a : p.attraction) p.objective += a * a;
 }
 // The outcomes' (then the unassigned faces') probabilities' Jacobian over the design variables: 3 per shape
 // variable (a design vertex, zero for one not on the hull; or a plane), then the centre of mass's 3 (the
@@ -104,7 +107,10 @@ Eigen::MatrixXd jacobian(const Point& p, MassModel mass, ShapeFreedom shape) {
   for (std::size_t o = 0; o < outcomes; ++o)
     for (const int f : p.target.outcomes[o].faces) weights(static_cast<Eigen::Index>(o), f) = 1;
   for (const int f : p.target.unassigned_faces) weights(static_cast<Eigen::Index>(outcomes), f) = 1;
-  const Eigen::MatrixXd rows = tape.gradients(weights);
+  return design_columns(p, tape.gradients(weights), shape);
+}
+
+Eigen::MatrixXd design_columns(const Point& p, const Eigen::MatrixXd& rows, ShapeFreedom shape) {
   const Eigen::Index hull_columns = rows.cols() - 3;
   Eigen::MatrixXd shape_columns;
   if (shape == ShapeFreedom::faces) {

@@ -32,6 +32,9 @@ struct Point {
   RestLandscape landscape;
   DesignTarget target;
   std::vector<double> achieved;
+  // Per outcome: its attraction residual (attraction.hpp; 0 unless all its faces are unstable).
+  std::vector<double> attraction;
+  // Σ (achieved − target)² over the outcomes and the unassigned faces, plus Σ attraction².
   double objective = 0, max_error = 0;
   std::set<std::pair<int, int>> stable;  // (outcome, count) of stable faces: the structure's coarse summary
 };
@@ -64,6 +67,10 @@ void score(Point& p);
 // The outcomes' (then the unassigned faces') probabilities' Jacobian over the design variables: 3 per shape
 // variable (a design vertex, zero for one not on the hull; or a plane), then the centre of mass's 3.
 Eigen::MatrixXd jacobian(const Point& p, MassModel mass, ShapeFreedom shape);
+
+// Rows over the hull's vertices (3j + k, body frame) and the centre of mass (3) to rows over the design
+// variables (jacobian()'s columns).
+Eigen::MatrixXd design_columns(const Point& p, const Eigen::MatrixXd& rows, ShapeFreedom shape);
 
 // The trial point `d` (unscaled: shape variables, then the centre of mass) away from `at`, the shape within
 // its move bound and the centre of mass pushed inside the shrunk hull; nothing (counted in `step`) if a

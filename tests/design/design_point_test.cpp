@@ -11,10 +11,12 @@
 #include <random>
 #include <vector>
 
+#include "../../src/design/attraction.hpp"
 #include "../../src/design/design_step.hpp"
 #include "../../src/design/flat_faces.hpp"
 #include "repose/design/design.hpp"
 #include "repose/design/target.hpp"
+#include "repose/model/particle.hpp"
 
 namespace repose {
 namespace {
@@ -249,6 +251,75 @@ TEST(FlatFaces, ThePrintabilityBoundsHoldTheStep) {
   EXPECT_GE(held.second, least_edge * (1 - 1e-6));
   std::printf("least face %g -> %g (unbounded %g); least edge %g -> %g (unbounded %g)\n", least_area,
               held.first, unbounded.first, least_edge, held.second, unbounded.second);
+}
+
+// An outcome whose faces are all unstable (the +x end of an ellipsoid's hull, the outcome's faces within 20°
+// of +x) is attracted: its residual t·(−m)/(0.1·L) from the best margin m among its faces
+// (independently, the model's face_stability_margin of the particle rebuilt by evaluate()), and its rows
+// equal central differences of that residual of the rebuilt point (h = 1e-6·L; the same structure on both
+// sides; tolerance 1e-5 of the row's scale: the differences' truncation, the margin being smooth within one
+// structure).
+TEST(Attraction, AnOutcomeWithNoStableFaceIsPulledTowardStability) {
+  // The built-in ellipsoid's hull, its points jittered (general position): its ends roll over.
+  std::vector<Vec3> points = load_particle("ellipsoid:a=1,b=0.8,c=0.6,n=4", 1.0).hull.vertices;
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> jitter(-1e-3, 1e-3);
+  for (Vec3& p : points) p += Vec3(jitter(rng), jitter(rng), jitter(rng));
+  DesignOptions options;
+  options.outcome_angle = 20 * std::numbers::pi / 180;
+  DesignTarget target = parse_design_target("[[[1,0,0],0.1],[[0,0,1],0.45],[[0,0,-1],0.45]]", "ends");
+  const ConvexHull hull = compute_convex_hull(points);
+  assign_outcome_faces(target, hull, options.outcome_angle, "--outcome-angle");
+  const detail::Point at = detail::evaluate(points, {}, Vec3::Zero(), "ends", target, options);
+  ASSERT_EQ(at.achieved[0], 0.0);
+  ASSERT_GT(at.attraction[0], 0.0);
+  EXPECT_EQ(at.attraction[1], 0.0);
+  double best = -INFINITY;
+  for (const int f : at.target.outcomes[0].faces)
+    best = std::max(best, at.particle.face_stability_margin[static_cast<std::size_t>(f)]);
+  EXPECT_NEAR(at.attraction[0], 0.1 * -best / (0.1 * at.particle.length), 1e-15);
+  const Eigen::MatrixXd rows = detail::attraction_rows(at, MassModel::fixed, ShapeFreedom::vertices);
+  const double h = 1e-6 * at.particle.length;
+  int compared = 0;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      double side[2];
+      bool same = true;
+      for (int s = 0; s < 2; ++s) {
+        std::vector<Vec3> q = points;
+        q[i][k] += s == 0 ? h : -h;
+        const detail::Point x = detail::evaluate(q, {}, Vec3::Zero(), "ends", target, options);
+        same = same && x.particle.hull.faces.size() == at.particle.hull.faces.size() &&
+               x.landscape.face_rest == at.landscape.face_rest;
+        side[s] = x.attraction[0];
+      }
+      if (!same) continue;
+      const double fd = (side[0] - side[1]) / (2 * h);
+      const double scale = rows.row(0).cwiseAbs().maxCoeff();
+      EXPECT_NEAR(rows(0, 3 * static_cast<Eigen::Index>(i) + k), fd, 1e-5 * scale)
+          << "point " << i << " axis " << k;
+      ++compared;
+    }
+  EXPECT_GT(compared, 100);
+  EXPECT_EQ(rows.row(1).cwiseAbs().maxCoeff(), 0.0);
+}
+
+// The design starts such outcomes: the ellipsoid's ends, 0.1 each within 20° of ±x, have no stable face at
+// the start (probability 0, a zero gradient: without the attraction the design stalled there at 0.1); the
+// design gives both ends a probability and gets closer than 0.1.
+TEST(Attraction, TheDesignStartsOutcomesWithNoStableFace) {
+  DesignOptions options;
+  options.outcome_angle = 20 * std::numbers::pi / 180;
+  options.freedom = parse_design_freedom("vertices");
+  const DesignTarget target =
+      parse_design_target("[[[1,0,0],0.1],[[-1,0,0],0.1],[[0,0,1],0.4],[[0,0,-1],0.4]]", "ends");
+  const DesignResult r =
+      design_quasi_static(load_particle("ellipsoid:a=1,b=0.8,c=0.6,n=4", 1.0), target, options);
+  ASSERT_EQ(r.start[0], 0.0);
+  ASSERT_EQ(r.start[1], 0.0);
+  EXPECT_GT(r.achieved[0], 0.02);
+  EXPECT_GT(r.achieved[1], 0.02);
+  EXPECT_LT(r.max_error(), 0.08);
 }
 
 }  // namespace
