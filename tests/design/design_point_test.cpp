@@ -253,6 +253,25 @@ TEST(FlatFaces, ThePrintabilityBoundsHoldTheStep) {
               held.first, unbounded.first, least_edge, held.second, unbounded.second);
 }
 
+// The centre of mass is pushed inside the shrunk hull along the violated face's normal, exactly onto the
+// margin: a unit cube's centre moved 0.7 along +x (0.2 beyond the face at x = 0.5) with a margin of 0.1 ends
+// at x = 0.4 (to the push's 1e-9 overshoot), its other coordinates unchanged.
+TEST(DesignPoint, TheCentreOfMassIsPushedOntoTheMargin) {
+  std::vector<Vec3> corners;
+  for (const double x : {-0.5, 0.5})
+    for (const double y : {-0.5, 0.5})
+      for (const double z : {-0.5, 0.5}) corners.emplace_back(x, y, z);
+  const ConvexHull cube = compute_convex_hull(corners);
+  Vec3 com(0.7, 0.1, -0.2);
+  ASSERT_TRUE(detail::push_inside(cube, 0.1, com));
+  EXPECT_NEAR(com.x(), 0.4, 1e-9);
+  EXPECT_EQ(com.y(), 0.1);
+  EXPECT_EQ(com.z(), -0.2);
+  Vec3 inside(0.1, 0.2, 0.3);
+  ASSERT_TRUE(detail::push_inside(cube, 0.1, inside));
+  EXPECT_EQ(inside, Vec3(0.1, 0.2, 0.3));
+}
+
 // An outcome whose faces are all unstable (the +x end of an ellipsoid's hull, the outcome's faces within 20°
 // of +x) is attracted: its residual t·(−m)/(0.1·L) from the best margin m among its faces
 // (independently, the model's face_stability_margin of the particle rebuilt by evaluate()), and its rows

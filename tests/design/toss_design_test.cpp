@@ -135,6 +135,13 @@ TEST(TossedOutcomes, ChiSquareAndIntervalsAgainstValuesWorkedByHand) {
   EXPECT_TRUE(fitted.all_within_fit_and_check_simultaneous);
   detail::count_fit_noise(fitted, target, 0);
   EXPECT_FALSE(fitted.all_within_fit_and_check);
+  // 45 / 35 / 20 (deviations 0.15, 0.15, 0): simultaneous half-widths 0.1551, 0.1693 at N = 100 (within),
+  // 0.1102, 0.1203 at N = 10,000 (not).
+  TossedOutcomes farther = detail::summarise({0, 100}, {45, 35, 20, 0, 0}, target);
+  detail::count_fit_noise(farther, target, 100);
+  EXPECT_TRUE(farther.all_within_fit_and_check_simultaneous);
+  detail::count_fit_noise(farther, target, 10000);
+  EXPECT_FALSE(farther.all_within_fit_and_check_simultaneous);
   // A landing on an outcome whose target is 0 rejects outright.
   const TossedOutcomes impossible = detail::summarise({0, 100}, {50, 49, 1, 0, 0}, {0.5, 0.5, 0.0});
   EXPECT_EQ(impossible.p_value, 0);
