@@ -37,6 +37,39 @@ detail::Point point(const std::vector<Vec3>& points, const DesignOptions& option
   return detail::evaluate(points, {}, Vec3::Zero(), "points", target, options);
 }
 
+// A box's corners, off-centre (no symmetry makes a derivative vanish by accident).
+std::vector<Vec3> box_corners() {
+  std::vector<Vec3> corners;
+  for (const double x : {-0.5, 0.5})
+    for (const double y : {-0.55, 0.55})
+      for (const double z : {-0.45, 0.45}) corners.emplace_back(x + 0.03, y, z - 0.02);
+  return corners;
+}
+
+// The box as a design point, its Jacobian (vertices; scaled variables: × L) and its residuals.
+struct BoxStep {
+  detail::Point at;
+  Eigen::MatrixXd jac;
+  Eigen::VectorXd residual;
+  // The Levenberg–Marquardt step (λ = 1e-6, no metric) within `bounds`.
+  Eigen::VectorXd step(const detail::Bounds& bounds) const {
+    return detail::lm_step(jac, residual, 1e-6, at, bounds, ShapeFreedom::vertices, at.particle.length,
+                           nullptr);
+  }
+};
+BoxStep box_step() {
+  BoxStep out{point(box_corners(), every_face()), {}, {}};
+  const detail::Point& at = out.at;
+  out.jac = detail::jacobian(at, MassModel::fixed, ShapeFreedom::vertices) * at.particle.length;
+  out.jac.rightCols<3>().setZero();
+  out.residual.resize(static_cast<Eigen::Index>(at.achieved.size()));
+  for (Eigen::Index o = 0; o + 1 < out.residual.size(); ++o)
+    out.residual[o] = at.achieved[static_cast<std::size_t>(o)] -
+                      at.target.outcomes[static_cast<std::size_t>(o)].probability;
+  out.residual[out.residual.size() - 1] = at.achieved.back();
+  return out;
+}
+
 // Points inside the hull (first in the list, and among the others) are design points too: the Jacobian's
 // columns for every point on the hull equal five-point central differences of the outcomes' probabilities
 // with that point moved (h = 4e-5·L, the tolerance of BasinGradient's vertex test, whose noise argument
@@ -123,12 +156,8 @@ TEST(FlatFaces, FlattenPutsEachFacesCornersBackOnAPlane) {
 // curvature, ~1e-6 here; tolerance 1e-4 of the rate's scale). Moving one corner off its faces would fold them
 // (the kink: one-sided rates of a quadrilateral differ by ~30 %).
 TEST(FlatFaces, AStepWithinTheFacesPlanesHasOneDerivative) {
-  std::vector<Vec3> corners;
-  for (const double x : {-0.5, 0.5})
-    for (const double y : {-0.55, 0.55})
-      for (const double z : {-0.45, 0.45}) corners.emplace_back(x + 0.03, y, z - 0.02);
   const DesignOptions options = every_face();
-  const detail::Point at = point(corners, options);
+  const detail::Point at = point(box_corners(), options);
   const std::vector<detail::FlatFace> flat = detail::flat_faces(at.particle.hull);
   ASSERT_EQ(flat.size(), 6u);
   const Eigen::MatrixXd jac = detail::jacobian(at, MassModel::fixed, ShapeFreedom::vertices);
@@ -165,28 +194,16 @@ TEST(FlatFaces, AStepWithinTheFacesPlanesHasOneDerivative) {
 // round-off against |d|), while the same step without them folds the faces (C·d ~1e-2 of |d|): the
 // constraint rows are what keeps a step within the planes, not the flattening after it.
 TEST(FlatFaces, TheStepSolvesWithinTheFacesPlanes) {
-  std::vector<Vec3> corners;
-  for (const double x : {-0.5, 0.5})
-    for (const double y : {-0.55, 0.55})
-      for (const double z : {-0.45, 0.45}) corners.emplace_back(x + 0.03, y, z - 0.02);
-  const detail::Point at = point(corners, every_face());
+  const BoxStep box = box_step();
+  const detail::Point& at = box.at;
   const double length = at.particle.length;
-  Eigen::MatrixXd jac = detail::jacobian(at, MassModel::fixed, ShapeFreedom::vertices) * length;
-  jac.rightCols<3>().setZero();
-  Eigen::VectorXd residual(static_cast<Eigen::Index>(at.achieved.size()));
-  for (Eigen::Index o = 0; o + 1 < residual.size(); ++o)
-    residual[o] = at.achieved[static_cast<std::size_t>(o)] -
-                  at.target.outcomes[static_cast<std::size_t>(o)].probability;
-  residual[residual.size() - 1] = at.achieved.back();
   detail::Bounds bounds{0, 10 * length, 0, 0, at.points, detail::flat_faces(at.particle.hull)};
-  const Eigen::MatrixXd c = detail::flatness_rows(bounds.flat, at.points, jac.cols());
-  const Eigen::VectorXd d =
-      detail::lm_step(jac, residual, 1e-6, at, bounds, ShapeFreedom::vertices, length, nullptr);
+  const Eigen::MatrixXd c = detail::flatness_rows(bounds.flat, at.points, box.jac.cols());
+  const Eigen::VectorXd d = box.step(bounds);
   ASSERT_GT(d.norm(), 1e-3);
   EXPECT_LT((c * d).norm(), 1e-9 * d.norm());
   bounds.flat.clear();
-  const Eigen::VectorXd free =
-      detail::lm_step(jac, residual, 1e-6, at, bounds, ShapeFreedom::vertices, length, nullptr);
+  const Eigen::VectorXd free = box.step(bounds);
   EXPECT_GT((c * free).norm(), 1e-3 * free.norm());  // 8e-3 here: six orders above the constrained step
 }
 
@@ -196,19 +213,9 @@ TEST(FlatFaces, TheStepSolvesWithinTheFacesPlanes) {
 // without the bounds takes some below. Tolerance: 1e-6 of the bound (the difference's truncation, ~1e-6 of
 // the change).
 TEST(FlatFaces, ThePrintabilityBoundsHoldTheStep) {
-  std::vector<Vec3> corners;
-  for (const double x : {-0.5, 0.5})
-    for (const double y : {-0.55, 0.55})
-      for (const double z : {-0.45, 0.45}) corners.emplace_back(x + 0.03, y, z - 0.02);
-  const detail::Point at = point(corners, every_face());
+  const BoxStep box = box_step();
+  const detail::Point& at = box.at;
   const double length = at.particle.length;
-  Eigen::MatrixXd jac = detail::jacobian(at, MassModel::fixed, ShapeFreedom::vertices) * length;
-  jac.rightCols<3>().setZero();
-  Eigen::VectorXd residual(static_cast<Eigen::Index>(at.achieved.size()));
-  for (Eigen::Index o = 0; o + 1 < residual.size(); ++o)
-    residual[o] = at.achieved[static_cast<std::size_t>(o)] -
-                  at.target.outcomes[static_cast<std::size_t>(o)].probability;
-  residual[residual.size() - 1] = at.achieved.back();
   const std::vector<detail::FlatFace> flat = detail::flat_faces(at.particle.hull);
   double least_area = INFINITY, least_edge = INFINITY;
   for (const HullFace& f : at.particle.hull.faces) least_area = std::min(least_area, f.area);
@@ -239,12 +246,10 @@ TEST(FlatFaces, ThePrintabilityBoundsHoldTheStep) {
     return std::make_pair(area, edge);
   };
   detail::Bounds free{0, 10 * length, 0, 0, at.points, flat};
-  const auto unbounded =
-      after(detail::lm_step(jac, residual, 1e-6, at, free, ShapeFreedom::vertices, length, nullptr));
+  const auto unbounded = after(box.step(free));
   ASSERT_TRUE(unbounded.first < least_area * 0.99 || unbounded.second < least_edge * 0.99);
   detail::Bounds bounds{0, 10 * length, least_edge, least_area, at.points, flat};
-  const Eigen::VectorXd d =
-      detail::lm_step(jac, residual, 1e-6, at, bounds, ShapeFreedom::vertices, length, nullptr);
+  const Eigen::VectorXd d = box.step(bounds);
   ASSERT_GT(d.norm(), 1e-3);
   const auto held = after(d);
   EXPECT_GE(held.first, least_area * (1 - 1e-6));
