@@ -130,12 +130,13 @@ inline void add_toss_distribution_options(CLI::App& sub, TossDistributionOptions
                  prefix + "damping as C / (m*sqrt(g*L^3)) (default 0.05; the paper's ellipsoid used 0.063)");
 }
 
-/// Checks the damping ratio (the toss's speeds are the study's to check) and sets both on `s`.
+/// Checks the damping ratio and the toss (before any output is written) and sets both on `s`.
 inline void apply_toss_distribution(const TossDistributionOptions& o, StudySettings& s) {
   if (!std::isfinite(o.damping_ratio) || o.damping_ratio < 0)
     throw Error("option --damping-ratio must be a finite number >= 0, got " + num(o.damping_ratio));
   s.damping_ratio = o.damping_ratio;
   s.toss = {o.velocity_max, o.spin_max};
+  validate(s.toss);
 }
 
 }  // namespace repose::cli

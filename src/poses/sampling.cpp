@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "repose/error.hpp"
+
 namespace repose {
 
 namespace {
@@ -32,6 +34,13 @@ Vec3 random_vector(const std::array<double, 3>& u, double max) {
 }
 
 }  // namespace
+
+void validate(const TossDistribution& toss) {
+  if (!(std::isfinite(toss.velocity_max) && toss.velocity_max >= 0))
+    throw Error("the tosses' largest speed (--velocity-max) must be a finite number >= 0");
+  if (!(std::isfinite(toss.spin_max) && toss.spin_max >= 0))
+    throw Error("the tosses' largest angular speed (--spin-max) must be a finite number >= 0");
+}
 
 std::array<double, 3> drop_uniforms(std::uint64_t seed, std::uint64_t index) {
   return uniforms(seed, index, 0);

@@ -46,10 +46,7 @@ PosesStudy prepare_study(const Particle& particle, const RestLandscape& landscap
   if (!settings.damping_given) params.damping = 0;
   validate(params);
   const TossDistribution& toss = settings.toss;
-  if (!(std::isfinite(toss.velocity_max) && toss.velocity_max >= 0))
-    throw Error("the tosses' largest speed (--velocity-max) must be a finite number >= 0");
-  if (!(std::isfinite(toss.spin_max) && toss.spin_max >= 0))
-    throw Error("the tosses' largest angular speed (--spin-max) must be a finite number >= 0");
+  validate(toss);
   if (settings.method == PoseMethod::quasi_static && (toss.active() || uses_impacts(params)))
     throw Error("tosses and rebounds need --method dynamic (quasi-static rolling has no momentum)");
   const bool smooth = params.smooth == SmoothMode::on ||

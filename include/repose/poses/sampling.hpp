@@ -27,6 +27,9 @@ struct TossDistribution {
   bool active() const { return velocity_max > 0 || spin_max > 0; }
 };
 
+/// Throws repose::Error naming the option (--velocity-max, --spin-max) unless both are finite and >= 0.
+void validate(const TossDistribution& toss);
+
 struct Toss {
   Vec3 velocity = Vec3::Zero();
   Vec3 spin = Vec3::Zero();
