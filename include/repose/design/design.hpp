@@ -50,7 +50,9 @@ struct DesignOptions {
 
 /// One iteration of the optimiser.
 struct DesignStep {
-  double objective = 0;            ///< Σ (achieved − target)² over the outcomes and the unassigned faces
+  /// Σ (achieved − target)² over the outcomes and the unassigned faces, plus the squared attraction of any
+  /// outcome whose faces are all unstable (docs/inverse-design.md, "Outcomes that cannot start")
+  double objective = 0;
   double max_error = 0;            ///< max |achieved − target|
   double step = 0;                 ///< largest vertex or centre-of-mass move of the accepted step (× L)
   int stable_faces = 0;            ///< of the hull after the step
