@@ -49,16 +49,20 @@ void hold_printable(const Point& at, const Bounds& bounds, double length, const 
   for (std::size_t f = 0; f < hull.faces.size(); ++f) {
     if (held.faces.count(static_cast<int>(f)) != 0) continue;
     const HullFace& face = hull.faces[f];
-    Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(d.size());
+    // ∂A/∂x_i per corner, and the first-order change ∂A/∂x · Δx (Δx = d·L), over the face's corners only.
     const std::size_t k = face.loop.size();
-    for (std::size_t i = 0; i < k; ++i) {
+    const auto gradient = [&](std::size_t i) {
       const Vec3& prev = hull.vertices[static_cast<std::size_t>(face.loop[(i + k - 1) % k])];
       const Vec3& next = hull.vertices[static_cast<std::size_t>(face.loop[(i + 1) % k])];
-      row.segment<3>(point(face.loop[i])) += (0.5 * face.normal.cross(prev - next)).transpose();
-    }
-    const double change = row.dot(d) * length;  // ∂A/∂x · Δx, Δx = d·L
+      return Vec3(0.5 * face.normal.cross(prev - next));
+    };
+    double change = 0;
+    for (std::size_t i = 0; i < k; ++i) change += gradient(i).dot(Vec3(d.segment<3>(point(face.loop[i]))));
+    change *= length;
     const double floor = bounds.min_area * (1 + kPrintableMargin);
     if (face.area + change >= floor) continue;
+    Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(d.size());
+    for (std::size_t i = 0; i < k; ++i) row.segment<3>(point(face.loop[i])) += gradient(i).transpose();
     // Dimensionless: ∂A/∂s · d = (floor − A), s = x/L, divided by L².
     add.emplace_back(row / length, (floor - face.area) / (length * length));
     held.faces.insert(static_cast<int>(f));
@@ -157,16 +161,17 @@ Eigen::VectorXd lm_step(Eigen::MatrixXd jac, const Eigen::VectorXd& residual, do
   // Scaled variables are the unscaled ones times L throughout, so C's rows serve as they are.
   // Edges and faces the step would take below their printability bounds are held at them the same way
   // (rows with a target: the change that leaves them just above the bound).
-  Eigen::MatrixXd flat = shape == ShapeFreedom::vertices ? flatness_rows(bounds.flat, at.points, jac.cols())
-                                                         : Eigen::MatrixXd(0, jac.cols());
-  Eigen::VectorXd targets = Eigen::VectorXd::Zero(flat.rows());
+  Eigen::MatrixXd constraints = shape == ShapeFreedom::vertices
+                                    ? flatness_rows(bounds.flat, at.points, jac.cols())
+                                    : Eigen::MatrixXd(0, jac.cols());
+  Eigen::VectorXd targets = Eigen::VectorXd::Zero(constraints.rows());
   Held printable;
   for (int pass = 0; pass < kActivePasses; ++pass) {
-    const Eigen::Index outcomes = jac.rows(), rows = outcomes + flat.rows();
+    const Eigen::Index outcomes = jac.rows(), rows = outcomes + constraints.rows();
     Eigen::MatrixXd all(rows, jac.cols());
-    all << jac, flat;
+    all << jac, constraints;
     Eigen::VectorXd ridge = Eigen::VectorXd::Constant(rows, lambda);
-    ridge.tail(flat.rows()).setConstant(kFlatRidge * lambda);
+    ridge.tail(constraints.rows()).setConstant(kFlatRidge * lambda);
     Eigen::VectorXd rhs(rows);
     rhs << residual, -targets;
     const Eigen::MatrixXd g = apply_inverse(metric, all.transpose());
@@ -174,9 +179,10 @@ Eigen::VectorXd lm_step(Eigen::MatrixXd jac, const Eigen::VectorXd& residual, do
     a.diagonal() += ridge;
     d = -(g * a.ldlt().solve(rhs));
     if (shape == ShapeFreedom::none) break;
-    const Eigen::Index before = flat.rows();
-    if (shape == ShapeFreedom::vertices) hold_printable(at, bounds, length, d, printable, flat, targets);
-    bool changed = flat.rows() != before;
+    const Eigen::Index before = constraints.rows();
+    if (shape == ShapeFreedom::vertices)
+      hold_printable(at, bounds, length, d, printable, constraints, targets);
+    bool changed = constraints.rows() != before;
     for (std::size_t i = 0; i < bounds.origin.size(); ++i) {
       // The bounded point (a vertex, or a plane's foot), and the direction in this variable's space that
       // moves it outward.
@@ -192,7 +198,8 @@ Eigen::VectorXd lm_step(Eigen::MatrixXd jac, const Eigen::VectorXd& residual, do
       if (d.segment<3>(col).dot(u) <= 0) continue;
       held[i] = changed = true;
       jac.middleCols<3>(col) = jac.middleCols<3>(col) * (Mat3::Identity() - u * u.transpose());
-      flat.middleCols<3>(col) = flat.middleCols<3>(col) * (Mat3::Identity() - u * u.transpose());
+      constraints.middleCols<3>(col) =
+          constraints.middleCols<3>(col) * (Mat3::Identity() - u * u.transpose());
     }
     if (!changed) break;
   }
