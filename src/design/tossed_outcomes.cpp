@@ -43,6 +43,18 @@ TossedOutcomes tossed_outcomes(const Particle& particle, const RestLandscape& la
   return summarise(drops, std::move(counts), target);
 }
 
+namespace {
+constexpr double kZ95 = 1.959963984540054;  // the normal quantile at 0.975
+
+// The normal quantile at 1 − 0.025/outcomes: Bonferroni's two-sided 95 % over the outcomes.
+double bonferroni_z(std::size_t outcomes) {
+  return outcomes > 0
+             ? boost::math::quantile(boost::math::complement(boost::math::normal_distribution<double>(),
+                                                             0.025 / static_cast<double>(outcomes)))
+             : kZ95;
+}
+}  // namespace
+
 TossedOutcomes summarise(DropRange drops, std::vector<std::uint64_t> counts,
                          const std::vector<double>& target) {
   const std::size_t outcomes = target.size();
@@ -54,11 +66,7 @@ TossedOutcomes summarise(DropRange drops, std::vector<std::uint64_t> counts,
   for (std::size_t k = 0; k < outcomes; ++k) landed += out.counts[k];
   bool within = out.counts[outcomes] == 0 && out.counts[outcomes + 1] == 0;
   bool within_all = within;
-  // The normal quantile at 1 − 0.025/outcomes: Bonferroni's two-sided 95 % over the outcomes.
-  const double z_all =
-      outcomes > 0 ? boost::math::quantile(boost::math::complement(boost::math::normal_distribution<double>(),
-                                                                   0.025 / static_cast<double>(outcomes)))
-                   : 1.959963984540054;
+  const double z_all = bonferroni_z(outcomes);
   for (std::size_t k = 0; k < out.counts.size(); ++k) {
     out.probability.push_back(static_cast<double>(out.counts[k]) / n);
     out.ci95.push_back(wilson_interval(out.counts[k], drops.size()));
@@ -94,15 +102,12 @@ void count_fit_noise(TossedOutcomes& check, const std::vector<double>& target, s
   bool each = fit_drops > 0 && check.drops.size() > 0 && check.counts[outcomes] == 0 &&
               check.counts[outcomes + 1] == 0;
   bool all = each;
-  const double z_all =
-      outcomes > 0 ? boost::math::quantile(boost::math::complement(boost::math::normal_distribution<double>(),
-                                                                   0.025 / static_cast<double>(outcomes)))
-                   : 1.959963984540054;
+  const double z_all = bonferroni_z(outcomes);
   for (std::size_t k = 0; k < outcomes && each; ++k) {
     const double t = target[k];
     const double spread = std::sqrt(t * (1 - t) * (1 / n + 1 / m));
     const double off = std::abs(check.probability[k] - t);
-    each = each && off <= 1.959963984540054 * spread;
+    each = each && off <= kZ95 * spread;
   }
   for (std::size_t k = 0; k < outcomes && all; ++k) {
     const double t = target[k];
