@@ -42,6 +42,13 @@ TEST_F(DesignCli, ADesignWritesItsHullAndItsJsonAndMeetsTheTarget) {
   EXPECT_NEAR(j["outcomes"][0]["achieved"].get<double>(), 0.4, 1e-4);
   EXPECT_NEAR(j["outcomes"][0]["start"].get<double>(), 1.0 / 6, 1e-12);  // the cube: 1/6 by symmetry
   EXPECT_FALSE(j["history"].empty());
+  EXPECT_EQ(j["options"]["mass"], "follows");  // the default
+  EXPECT_EQ(j["options"]["keep_faces_flat"], true);
+  // The offset an insert must give: the centre of mass less the solid's centroid, component by component.
+  for (std::size_t k = 0; k < 3; ++k)
+    EXPECT_NEAR(j["center_of_mass_offset"][k].get<double>(),
+                j["center_of_mass"][k].get<double>() - j["centroid"][k].get<double>(), 1e-12)
+        << k;
   for (const char* file : {"design.obj", "design.stl", "design.json"})
     EXPECT_TRUE(fs::exists(dir_.string() + "/out/" + file)) << file;
   // The design read back (its OBJ and its centre of mass) lands as the JSON says.
@@ -109,6 +116,14 @@ TEST_F(DesignCli, ATossedDesignReportsItsChecksAndItsSettles) {
   std::uint64_t total = 0;
   for (const auto& c : t["check"]["counts"]) total += c.get<std::uint64_t>();
   EXPECT_EQ(total, 80u);
+  // Each frequency inside its own interval, the interval's ends ordered.
+  for (std::size_t k = 0; k < t["check"]["probability"].size(); ++k) {
+    const double p = t["check"]["probability"][k].get<double>();
+    EXPECT_LE(t["check"]["ci95"][k][0].get<double>(), p) << k;
+    EXPECT_GE(t["check"]["ci95"][k][1].get<double>(), p) << k;
+    EXPECT_LT(t["check"]["ci95"][k][0].get<double>(), t["check"]["ci95"][k][1].get<double>()) << k;
+  }
+  EXPECT_EQ(t["check"]["fit_drops"].get<std::uint64_t>(), 60u);
   EXPECT_EQ(t["history"][0]["kind"], "start");
   // The start, six finite differences (one per outcome) and a step, then the two checks.
   EXPECT_GE(t["history"].size(), 8u);

@@ -171,6 +171,21 @@ TEST(DesignQuasiStatic, TheMinimumFaceBoundHolds) {
 // An unreachable target gets the best achievable answer, said so, in bounded time: the cube's centre of mass
 // alone cannot give 0.4 on one face and 0.12 on each other (by symmetry the four sides stay equal and moving
 // along the axis trades the bottom against the top).
+// The history's count of stable faces is the design's: the last step's count equals the stable faces of
+// the design read back as a particle (its own landscape), and the cube started with six.
+TEST(DesignQuasiStatic, TheHistoryCountsTheDesignsStableFaces) {
+  const DesignTarget target = parse_design_target(
+      "[[[0,0,-1],0.4],[[0,0,1],0.12],[[1,0,0],0.12],[[-1,0,0],0.12],[[0,1,0],0.12],[[0,-1,0],0.12]]", "t");
+  const DesignResult r = design_quasi_static(load_particle("box:x=1,y=1,z=1", 1.0), target);
+  ASSERT_FALSE(r.history.empty());
+  const Particle design = built(r);
+  const RestLandscape land = compute_rest_landscape(design);
+  int stable = 0;
+  for (std::size_t f = 0; f < land.face_rest.size(); ++f) stable += land.face_rest[f] == static_cast<int>(f);
+  EXPECT_EQ(r.history.back().stable_faces, stable);
+  EXPECT_GE(stable, 6);
+}
+
 TEST(DesignQuasiStatic, AnUnreachableTargetStopsWithItsBestAchievable) {
   DesignOptions options;
   options.freedom = parse_design_freedom("center-of-mass");
