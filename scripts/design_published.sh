@@ -2,7 +2,9 @@
 # The published designs of Baktash et al. 2025 (convex_dice; data/experiments/baktash2025) against repose's
 # quasi-static design from the same initial shapes and targets (docs/inverse-design.md, "Checked against
 # the published designs"). Their rule for outcomes: every hull face to the nearest target normal
-# (--outcome-angle 180); their centre of mass: the uniform solid's, following the shape (frozen_G false).
+# (--outcome-angle 180), the normals following their most probable faces after every step (the column "their
+# rule": --outcome-normals follow, with our --min-margin 0.02 where they have a barycentre regulariser);
+# their centre of mass: the uniform solid's, following the shape (frozen_G false).
 #   scripts/design_published.sh [REPOSE]      (default build/ci/apps/repose/repose)
 set -euo pipefail
 repo="$(cd "$(dirname "$0")/.." && pwd)"
@@ -14,10 +16,11 @@ read -r -a extra <<<"${EXTRA:-}"
 data="$repo/data/experiments/baktash2025"
 out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
-printf '%-22s %-12s %-14s %-28s %-28s\n' example "their design" "ours: refined" "ours from their start" "ours, centre of mass free"
+printf '%-22s %-12s %-14s %-28s %-28s %-28s\n' example "their design" "ours: refined" "ours from their start" \
+  "the same, their rule" "ours, centre of mass free"
 row() {  # name, their design, its target, initial shape, its target
   local name=$1 design=$2 target=$3 start=$4 start_target=$5
-  local theirs refined ours free
+  local theirs refined ours rule free
   theirs=$("$repose" design "$design" "${extra[@]}" --inertia convex --target "$target" --vary vertices --outcome-angle 180 \
            --iterations 0 --json | python3 -c 'import json,sys; print("%.4f" % json.load(sys.stdin)["max_error"])')
   refined=$("$repose" design "$design" "${extra[@]}" --inertia convex --target "$target" --vary vertices --outcome-angle 180 \
@@ -25,9 +28,13 @@ row() {  # name, their design, its target, initial shape, its target
   ours=$( { /usr/bin/time -f "%e" "$repose" design "$start" "${extra[@]}" --inertia convex --target "$start_target" \
             --vary vertices --outcome-angle 180 --max-move "$move" --json > "$out/o.json"; } 2>&1 )
   ours=$(python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); print("%.1e (%d it, %s s)" % (j["max_error"], len(j["history"]), sys.argv[2]))' "$out/o.json" "$ours")
+  rule=$( { /usr/bin/time -f "%e" "$repose" design "$start" "${extra[@]}" --inertia convex --target "$start_target" \
+            --vary vertices --outcome-angle 180 --outcome-normals follow --min-margin 0.02 --max-move "$move" \
+            --json > "$out/r.json"; } 2>&1 )
+  rule=$(python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); print("%.1e (%d it, %s s)" % (j["max_error"], len(j["history"]), sys.argv[2]))' "$out/r.json" "$rule")
   free=$("$repose" design "$start" "${extra[@]}" --inertia convex --target "$start_target" --vary vertices+center-of-mass --max-move "$move" \
          --outcome-angle 180 --json | python3 -c 'import json,sys; j=json.load(sys.stdin); import math; o=j["center_of_mass_offset"]; print("%.1e (offset %.2f L)" % (j["max_error"], math.sqrt(sum(x*x for x in o))/j["characteristic_length"]))')
-  printf '%-22s %-12s %-14s %-28s %-28s\n' "$name" "$theirs" "$refined" "$ours" "$free"
+  printf '%-22s %-12s %-14s %-28s %-28s %-28s\n' "$name" "$theirs" "$refined" "$ours" "$rule" "$free"
 }
 i="$data/initial"
 row Binom2 "$data/meshes/Binom2__opt_test.obj" "$data/outcomes/Binom2__final_normal_probs.json" \

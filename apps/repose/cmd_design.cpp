@@ -28,6 +28,7 @@ struct DesignCliOptions {
   std::string vary = "vertices+center-of-mass";
   std::string mass = "follows";
   double outcome_angle = 30;  // degrees
+  std::string outcome_normals = "fixed";
   DesignOptions design;
   std::string model = "quasi-static";
   TossCliOptions toss;
@@ -42,8 +43,9 @@ void print_design(const DesignCliOptions& o, const DesignTarget& target, const D
   std::cout << "design of " << o.source << " for " << o.target << " (vary " << o.vary << ")\n";
   std::cout << "outcome  normal                         target    start     achieved\n";
   char line[160];
+  // The normals the outcomes are assigned by at the design (the target's unless --outcome-normals follow).
   for (std::size_t k = 0; k < target.outcomes.size(); ++k) {
-    const Vec3& n = target.outcomes[k].normal;
+    const Vec3& n = r.outcome_normals[k];
     std::snprintf(line, sizeof line, "%-8zu [%7.4f, %7.4f, %7.4f]   %.5f   %.5f   %.5f\n", k + 1, n[0], n[1],
                   n[2], r.target[k], r.start[k], r.achieved[k]);
     std::cout << line;
@@ -95,6 +97,11 @@ Command add_design_command(CLI::App& app) {
       ->check(CLI::IsMember({"follows", "fixed"}));
   sub->add_option("--outcome-angle", opts->outcome_angle,
                   "Degrees: a hull face belongs to the nearest target normal within this (default 30)");
+  sub->add_option("--outcome-normals", opts->outcome_normals,
+                  "fixed: the target's normals stay put in the body (default); follow: after every step each "
+                  "outcome's normal moves to its most probable face's (convex_dice's rule: an outcome is the "
+                  "face the die shows, however the design turns it)")
+      ->check(CLI::IsMember({"fixed", "follow"}));
   sub->add_option("--com-margin", opts->design.com_margin,
                   "x L: the centre of mass stays this far inside every face (default 0.05)");
   sub->add_option("--max-move", opts->design.max_vertex_move,
@@ -103,6 +110,11 @@ Command add_design_command(CLI::App& app) {
                   "x L: no hull edge gets shorter, unless it started shorter (default 0.02)");
   sub->add_option("--min-face", opts->design.min_face_area,
                   "x L^2: no hull face gets smaller, unless it started smaller (default 0.001)");
+  sub->add_option(
+      "--min-margin", opts->design.min_margin,
+      "x L: draw every outcome toward a stable face with its centre of mass's projection at least "
+      "this far inside (a robust face, and no stall at the edge of stability; default 0: only "
+      "outcomes with no stable face)");
   sub->add_flag("--fold-faces", opts->fold_faces,
                 "Vertices: let faces of four or more vertices fold (by default they stay flat: a flat face "
                 "is a kink of the probabilities, and a die's faces are flat)");
@@ -133,6 +145,7 @@ Command add_design_command(CLI::App& app) {
             o.design.freedom = parse_design_freedom(o.vary);
             o.design.mass = o.mass == "fixed" ? MassModel::fixed : MassModel::follows_shape;
             o.design.keep_faces_flat = !o.fold_faces;
+            o.design.follow_outcome_normals = o.outcome_normals == "follow";
             if (!(o.outcome_angle > 0 && o.outcome_angle <= 180))
               throw Error("--outcome-angle " + num(o.outcome_angle) + ": must be in (0, 180] degrees");
             o.design.outcome_angle = o.outcome_angle * std::numbers::pi / 180;

@@ -96,8 +96,10 @@ def design(particle, target, **options):
     form), {"outcomes": [{"normal": [...], "probability": p}, ...]} or {"fair": [normals]}; normals in the
     mesh's frame. Keyword options are the command line's: vary ("vertices+center-of-mass" by default,
     "center-of-mass", "vertices", "faces", "faces+center-of-mass"), mass ("follows" or "fixed"),
-    outcome_angle (degrees), com_margin, max_move, max_step, min_edge, min_face, smoothing (x L, L^2),
-    tolerance, iterations, keep_faces_flat (True), html (a path: the HTML report, as --html). model="tossed" takes toss=dict(...) with drops, check_drops, seed, threads,
+    outcome_angle (degrees), outcome_normals ("fixed" or "follow": after every step each outcome's normal
+    moves to its most probable face's, convex_dice's rule), com_margin, max_move, max_step, min_edge,
+    min_face, min_margin, smoothing (x L, L^2), tolerance, iterations, keep_faces_flat (True), html (a path:
+    the HTML report, as --html). model="tossed" takes toss=dict(...) with drops, check_drops, seed, threads,
     iterations (tossed estimates), velocity_max, spin_max, damping_ratio and settle()'s parameters
     (drop_height, restitution, friction, ...); the result then has a "tossed" entry (the checks of both
     designs on unseen drops, the history). Raises ValueError for bad input; Ctrl-C stops a tossed design."""

@@ -91,7 +91,8 @@ def poses(particle: Particle, n: int, *, seed: int = 1, threads: int = 0, method
           spin_max: float = 0.0, persistence: Optional[float] = None, **params: Any) -> PosesResult: ...
 def quasi_static(particle: Particle, *, persistence: Optional[float] = None) -> list[Pose]: ...
 def design(particle: Particle, target: Any, *, vary: str = "vertices+center-of-mass", mass: str = "follows",
-           outcome_angle: float = 30.0, com_margin: float = 0.05, max_move: float = 0.15, max_step: float = 0.05,
-           min_edge: float = 0.02, min_face: float = 0.001, smoothing: float = 0.1, tolerance: float = 1e-4,
+           outcome_angle: float = 30.0, outcome_normals: str = "fixed", com_margin: float = 0.05,
+           max_move: float = 0.15, max_step: float = 0.05, min_edge: float = 0.02, min_face: float = 0.001,
+           min_margin: float = 0.0, smoothing: float = 0.1, tolerance: float = 1e-4,
            iterations: int = 200, model: str = "quasi-static",
            toss: Optional[Dict[str, Any]] = None) -> DesignResult: ...

@@ -42,6 +42,11 @@ DesignOptions design_options(const py::dict& kwargs) {
       const double degrees = number();
       if (!(degrees > 0 && degrees <= 180)) throw Error("design: outcome_angle must be in (0, 180] degrees");
       o.outcome_angle = degrees * std::numbers::pi / 180;
+    } else if (name == "outcome_normals") {
+      const std::string m = py::str(value);
+      if (m != "fixed" && m != "follow")
+        throw Error("design: outcome_normals '" + m + "': expected fixed or follow");
+      o.follow_outcome_normals = m == "follow";
     } else if (name == "com_margin") {
       o.com_margin = number();
     } else if (name == "max_move") {
@@ -52,6 +57,8 @@ DesignOptions design_options(const py::dict& kwargs) {
       o.min_edge = number();
     } else if (name == "min_face") {
       o.min_face_area = number();
+    } else if (name == "min_margin") {
+      o.min_margin = number();
     } else if (name == "smoothing") {
       o.smoothing = number();
     } else if (name == "keep_faces_flat") {
@@ -65,10 +72,10 @@ DesignOptions design_options(const py::dict& kwargs) {
         throw Error("design: iterations must be an integer >= 0");
       o.max_iterations = static_cast<int>(n);
     } else {
-      throw Error(
-          "design: unknown option '" + name +
-          "' (vary, mass, outcome_angle, com_margin, max_move, max_step, min_edge, min_face, smoothing, "
-          "keep_faces_flat, tolerance, iterations)");
+      throw Error("design: unknown option '" + name +
+                  "' (vary, mass, outcome_angle, outcome_normals, com_margin, max_move, max_step, min_edge, "
+                  "min_face, min_margin, "
+                  "smoothing, keep_faces_flat, tolerance, iterations)");
     }
   }
   return o;

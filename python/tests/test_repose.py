@@ -342,6 +342,12 @@ def test_design_meets_a_cube_target_and_rejects_bad_options(tmp_path):
         repose.design(repose.Particle.shape("box:x=1,y=1,z=1"), [[[0, 0, 1], 0.5]])
     with pytest.raises(ValueError, match="keep_faces_flat"):
         repose.design(repose.Particle.shape("box:x=1,y=1,z=1"), target, keep_faces_flat=1)
+    with pytest.raises(ValueError, match="outcome_normals"):
+        repose.design(repose.Particle.shape("box:x=1,y=1,z=1"), target, outcome_normals="moving")
+    followed = repose.design(repose.Particle.shape("box:x=1,y=1,z=1"), target, vary="vertices",
+                             outcome_normals="follow", min_margin=0.02)
+    assert followed.options["outcome_normals"] == "follow" and followed.options["min_margin"] == 0.02
+    assert all("design_normal" in o and o["margin"] > 0 for o in followed.outcomes)
 
 
 def test_design_for_the_toss_reports_its_checks_and_rejects_bad_toss_options():

@@ -44,28 +44,32 @@ double volume(const std::vector<Vec3>& x, const ConvexHull& hull) {
   return out / 6;
 }
 
-// The outcome's face with the best (largest) margin, and that margin; face −1 if the attraction is 0.
+// The outcome's face with the best (largest) margin, and that margin less the floor (× L: min_margin);
+// face −1 if the attraction is 0.
 std::pair<int, double> critical_face(const Particle& particle, const RestLandscape& landscape,
-                                     const DesignOutcome& outcome) {
+                                     const DesignOutcome& outcome, double min_margin) {
   if (!(outcome.probability > 0)) return {-1, 0};
+  const double floor = min_margin * particle.length;
   int best = -1;
   double best_margin = -INFINITY;
   for (const int f : outcome.faces) {
-    if (landscape.face_rest[static_cast<std::size_t>(f)] == f) return {-1, 0};  // a stable face
+    // With no floor any stable face will do (its margin is positive: the landscape's own test).
+    if (floor == 0 && landscape.face_rest[static_cast<std::size_t>(f)] == f) return {-1, 0};
     const double m = particle.face_stability_margin[static_cast<std::size_t>(f)];
     if (m > best_margin) best_margin = m, best = f;
   }
-  if (best_margin >= 0) return {-1, 0};
-  return {best, best_margin};
+  if (best_margin >= floor) return {-1, 0};
+  return {best, best_margin - floor};
 }
 
 }  // namespace
 
 std::vector<double> attraction(const Particle& particle, const RestLandscape& landscape,
-                               const DesignTarget& target) {
+                               const DesignTarget& target, const std::vector<double>& margin_floor) {
   std::vector<double> out;
-  for (const DesignOutcome& o : target.outcomes) {
-    const auto [face, m] = critical_face(particle, landscape, o);
+  for (std::size_t k = 0; k < target.outcomes.size(); ++k) {
+    const DesignOutcome& o = target.outcomes[k];
+    const auto [face, m] = critical_face(particle, landscape, o, margin_floor[k]);
     out.push_back(face < 0 ? 0.0 : o.probability * -m / (kAttractionLength * particle.length));
   }
   return out;
@@ -80,7 +84,7 @@ Eigen::MatrixXd attraction_rows(const Point& p, MassModel mass, ShapeFreedom sha
   const Vec3 centroid = solid_centroid<double>(hull.vertices, hull);
   for (std::size_t o = 0; o < outcomes; ++o) {
     const DesignOutcome& outcome = p.target.outcomes[o];
-    const int f = critical_face(p.particle, p.landscape, outcome).first;
+    const int f = critical_face(p.particle, p.landscape, outcome, p.margin_floor[o]).first;
     if (f < 0) continue;
     const HullFace& face = hull.faces[static_cast<std::size_t>(f)];
     const double scale = -outcome.probability / kAttractionLength;  // a = scale · m / L

@@ -22,11 +22,10 @@ void check(const DesignOptions& o) {
   if (!(o.outcome_angle > 0 && o.outcome_angle <= std::numbers::pi))
     throw Error("design: --outcome-angle must be in (0, 180] degrees");
   if (!(o.com_margin >= 0) || !(o.max_vertex_move >= 0) || !(o.min_edge >= 0) || !(o.min_face_area >= 0) ||
-      !(o.smoothing >= 0))
+      !(o.smoothing >= 0) || !(o.min_margin >= 0))
     throw Error(
-        "design: the bounds (--com-margin, --max-move, --min-edge, --min-face) and --smoothing must be "
-        "numbers "
-        ">= 0");
+        "design: the bounds (--com-margin, --max-move, --min-edge, --min-face, --min-margin) and --smoothing "
+        "must be numbers >= 0");
   if (!(o.tolerance > 0) || o.max_iterations < 0 || o.max_trials < 1)
     throw Error("design: --tolerance must be > 0 and --iterations >= 0");
   if (!o.freedom.center_of_mass && o.freedom.shape == ShapeFreedom::none)
@@ -72,18 +71,50 @@ Point start_point(const DesignSetup& setup, DesignTarget target, const DesignOpt
   // The outcomes must be outcomes of the starting hull (the error names the option).
   assign_outcome_faces(target, start.hull, options.outcome_angle, "--outcome-angle");
   // The start's centre of mass is the body frame's origin.
-  return evaluate(start.hull.vertices, face_planes(start.hull), Vec3::Zero(), start.name, target, options);
+  Point p = evaluate(start.hull.vertices, face_planes(start.hull), Vec3::Zero(), start.name, target, options);
+  // The floor keeps a face that starts robust from sliding to the edge of stability; an outcome whose best
+  // stable face starts closer to it than options.min_margin is free (a start designed that way).
+  const std::vector<double> margins = outcome_margins(p);
+  for (std::size_t o = 0; o < margins.size(); ++o)
+    if (margins[o] > 0 && margins[o] < p.margin_floor[o]) p.margin_floor[o] = 0;
+  score(p);
+  return p;
 }
 
 Point retarget(const Point& at, const DesignTarget& target) {
-  // The same hull, landscape and outcome faces; only the probabilities asked for change.
+  // The same hull, landscape, outcome normals and faces; only the probabilities asked for change.
   Point out = at;
-  out.target = target;
   for (std::size_t k = 0; k < out.target.outcomes.size(); ++k)
-    out.target.outcomes[k].faces = at.target.outcomes[k].faces;
-  out.target.unassigned_faces = at.target.unassigned_faces;
+    out.target.outcomes[k].probability = target.outcomes[k].probability;
   score(out);
   return out;
+}
+
+bool follow_outcome_normals(Point& p, double max_angle, bool& kept) {
+  DesignTarget moved = p.target;
+  for (DesignOutcome& o : moved.outcomes) {
+    int best = -1;
+    double most = 0;
+    for (const int f : o.faces) {
+      const double q = p.landscape.basin_probability[static_cast<std::size_t>(f)];
+      if (q > most) most = q, best = f;
+    }
+    // An outcome with no stable face keeps its normal (the attraction pulls a face toward it).
+    if (best >= 0) o.normal = p.particle.hull.faces[static_cast<std::size_t>(best)].normal;
+  }
+  try {
+    assign_outcome_faces(moved, p.particle.hull, max_angle, "--outcome-angle");
+  } catch (const Error&) {
+    // An outcome with no stable face lost its last face to a moved normal: the normals stay (counted).
+    kept = true;
+    return false;
+  }
+  bool changed = moved.unassigned_faces != p.target.unassigned_faces;
+  for (std::size_t k = 0; k < moved.outcomes.size(); ++k)
+    changed = changed || moved.outcomes[k].faces != p.target.outcomes[k].faces;
+  p.target = std::move(moved);
+  score(p);
+  return changed;
 }
 
 Descent descend(Point from, const DesignTarget& target, const DesignSetup& setup,
@@ -167,7 +198,7 @@ Descent descend(Point from, const DesignTarget& target, const DesignSetup& setup
         d = d.cwiseProduct(scale);
         double moved = 0;
         std::optional<Point> next =
-            trial_point(at, d, mass, shape, live, start.name, target, options, step, moved);
+            trial_point(at, d, mass, shape, live, start.name, at.target, options, step, moved);
         // A decrease at round-off is no progress (it would only spin out the iterations).
         if (next && next->objective < at.objective * (1 - kMinDecrease)) {
           step.step = std::max(moved, (next->com - at.com).norm()) / length;
@@ -196,6 +227,8 @@ Descent descend(Point from, const DesignTarget& target, const DesignSetup& setup
     if (accepted) {
       step.structure_changed = next->stable != at.stable;
       at = std::move(*next);
+      if (options.follow_outcome_normals)
+        step.outcomes_reassigned = follow_outcome_normals(at, options.outcome_angle, step.normals_kept);
     }
     step.accepted = accepted;
     step.objective = at.objective;
@@ -215,6 +248,8 @@ DesignResult design_result(const DesignSetup& setup, const Point& start, const D
   const Point& at = descent.at;
   DesignResult result;
   result.target = target_vector(at.target);
+  for (const DesignOutcome& o : at.target.outcomes) result.outcome_normals.push_back(o.normal);
+  result.outcome_margin = outcome_margins(at);
   result.start = start.achieved;
   result.history = descent.history;
   result.stop = descent.stop;

@@ -28,8 +28,14 @@ DesignSetup design_setup(const Particle& start, const DesignOptions& options);
 // --outcome-angle if an outcome gets no face).
 Point start_point(const DesignSetup& setup, DesignTarget target, const DesignOptions& options);
 
-// `at` scored for another target of the same outcomes (another probability per outcome).
+// `at` scored for another target of the same outcomes (another probability per outcome; `at`'s normals and
+// faces).
 Point retarget(const Point& at, const DesignTarget& target);
+
+// DesignOptions::follow_outcome_normals: each outcome's normal moved to its most probable stable face's, the
+// faces assigned afresh within `max_angle` and `p` scored again; true if a face changed outcome. If that
+// would leave an outcome without a face, nothing changes and `kept` is set.
+bool follow_outcome_normals(Point& p, double max_angle, bool& kept);
 
 struct Descent {
   Point at;  // the last accepted point

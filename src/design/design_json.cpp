@@ -31,21 +31,27 @@ nlohmann::json design_object(const std::string& source, const DesignTarget& targ
   j["options"] = {{"vary", to_string(o.freedom)},
                   {"mass", o.mass == MassModel::fixed ? "fixed" : "follows"},
                   {"outcome_angle_degrees", o.outcome_angle * 180 / std::numbers::pi},
+                  {"outcome_normals", o.follow_outcome_normals ? "follow" : "fixed"},
                   {"com_margin", o.com_margin},
                   {"max_move", o.max_vertex_move},
                   {"max_step", o.max_step},
                   {"min_edge", o.min_edge},
                   {"min_face", o.min_face_area},
+                  {"min_margin", o.min_margin},
                   {"smoothing", o.smoothing},
                   {"keep_faces_flat", o.keep_faces_flat},
                   {"tolerance", o.tolerance},
                   {"iterations", o.max_iterations}};
   nlohmann::json outcomes = nlohmann::json::array();
-  for (std::size_t k = 0; k < target.outcomes.size(); ++k)
+  for (std::size_t k = 0; k < target.outcomes.size(); ++k) {
     outcomes.push_back({{"normal", vec(target.outcomes[k].normal)},
                         {"target", r.target[k]},
                         {"start", r.start[k]},
-                        {"achieved", r.achieved[k]}});
+                        {"achieved", r.achieved[k]},
+                        {"margin", r.outcome_margin[k]}});
+    // Where the outcome's normal followed its face to (its faces at the design are those nearest it).
+    if (o.follow_outcome_normals) outcomes.back()["design_normal"] = vec(r.outcome_normals[k]);
+  }
   j["outcomes"] = outcomes;
   j["unassigned"] = {{"target", 0.0}, {"start", r.start.back()}, {"achieved", r.achieved.back()}};
   j["stop"] = r.stop;
@@ -65,6 +71,8 @@ nlohmann::json design_object(const std::string& source, const DesignTarget& targ
                        {"stable_faces", s.stable_faces},
                        {"accepted", s.accepted},
                        {"structure_changed", s.structure_changed},
+                       {"outcomes_reassigned", s.outcomes_reassigned},
+                       {"normals_kept", s.normals_kept},
                        {"trials", s.trials},
                        {"rejected",
                         {{"rose", s.rose},

@@ -49,7 +49,8 @@ double smallest_face(const ConvexHull& hull) {
 }
 
 Point evaluate(std::vector<Vec3> points, std::vector<Vec3> planes, const Vec3& com, const std::string& name,
-               const DesignTarget& target, const DesignOptions& options, const ConvexHull* hull) {
+               const DesignTarget& target, const DesignOptions& options, const ConvexHull* hull,
+               const std::vector<double>* margin_floor) {
   Point p;
   p.points = std::move(points);
   p.planes = std::move(planes);
@@ -67,6 +68,10 @@ Point evaluate(std::vector<Vec3> points, std::vector<Vec3> planes, const Vec3& c
   p.centroid = detail::solid_centroid<double>(p.particle.hull.vertices, p.particle.hull) + com;
   p.landscape = compute_rest_landscape(p.particle);
   p.target = target;
+  if (margin_floor != nullptr)
+    p.margin_floor = *margin_floor;
+  else
+    p.margin_floor.assign(target.outcomes.size(), options.min_margin);
   assign_outcome_faces(p.target, p.particle.hull, options.outcome_angle, "--outcome-angle");
   score(p);
   return p;
@@ -93,9 +98,20 @@ void score(Point& p) {
     p.objective += r * r;
     p.max_error = std::max(p.max_error, std::abs(r));
   }
-  p.attraction = attraction(p.particle, p.landscape, p.target);
+  p.attraction = attraction(p.particle, p.landscape, p.target, p.margin_floor);
   for (const double a : p.attraction) p.objective += a * a;
 }
+std::vector<double> outcome_margins(const Point& p) {
+  std::vector<double> out;
+  for (const DesignOutcome& o : p.target.outcomes) {
+    double best = -INFINITY;
+    for (const int f : o.faces)
+      best = std::max(best, p.particle.face_stability_margin[static_cast<std::size_t>(f)]);
+    out.push_back(best / p.particle.length);
+  }
+  return out;
+}
+
 // The outcomes' (then the unassigned faces') probabilities' Jacobian over the design variables: 3 per shape
 // variable (a design vertex, zero for one not on the hull; or a plane), then the centre of mass's 3 (the
 // offset from the centroid, or the position).
@@ -183,7 +199,8 @@ std::optional<Point> trial_point(const Point& at, const Eigen::VectorXd& d, Mass
       return std::nullopt;
     }
     moved = std::max(moved, (com - at.com).norm());
-    return evaluate(std::move(points), std::move(planes), com, name, target, options, &hull);
+    return evaluate(std::move(points), std::move(planes), com, name, target, options, &hull,
+                    &at.margin_floor);
   } catch (const Error&) {
     ++step.degenerate;  // the points' hull degenerated, or its faces no longer close
     return std::nullopt;

@@ -31,6 +31,9 @@ struct Point {
   std::vector<int> design_index;
   RestLandscape landscape;
   DesignTarget target;
+  // Per outcome (× L): the stability margin its best face is drawn to (attraction.hpp): DesignOptions::
+  // min_margin, or 0 for an outcome with a stable face that starts closer to the edge than that.
+  std::vector<double> margin_floor;
   std::vector<double> achieved;
   // Per outcome: its attraction residual (attraction.hpp; 0 unless all its faces are unstable).
   std::vector<double> attraction;
@@ -56,13 +59,18 @@ double shortest_edge(const ConvexHull& hull);
 double smallest_face(const ConvexHull& hull);
 
 // The point with these shape points (planes: faces mode) and centre of mass (the start's body frame);
-// `hull`, if given, is the points' hull (computed otherwise).
+// `hull`, if given, is the points' hull (computed otherwise); `margin_floor`, if given, the outcomes'
+// (options.min_margin for each otherwise).
 Point evaluate(std::vector<Vec3> points, std::vector<Vec3> planes, const Vec3& com, const std::string& name,
-               const DesignTarget& target, const DesignOptions& options, const ConvexHull* hull = nullptr);
+               const DesignTarget& target, const DesignOptions& options, const ConvexHull* hull = nullptr,
+               const std::vector<double>* margin_floor = nullptr);
 
 // The point's outcomes' probabilities, stable faces per outcome and objective, from its landscape and its
 // target (whose faces are assigned).
 void score(Point& p);
+
+// Per outcome (× L): the best stability margin among its faces (negative: none is stable).
+std::vector<double> outcome_margins(const Point& p);
 
 // The outcomes' (then the unassigned faces') probabilities' Jacobian over the design variables: 3 per shape
 // variable (a design vertex, zero for one not on the hull; or a plane), then the centre of mass's 3.

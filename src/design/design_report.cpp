@@ -17,6 +17,9 @@ std::string design_report_html(const std::string& title, const DesignTarget& tar
                                const std::string& design_json) {
   const Particle body = design_particle(design, title);
   DesignTarget assigned = target;
+  // The outcomes as the design assigns them (their normals followed the faces, or the target's).
+  for (std::size_t o = 0; o < assigned.outcomes.size() && o < design.outcome_normals.size(); ++o)
+    assigned.outcomes[o].normal = design.outcome_normals[o];
   assign_outcome_faces(assigned, body.hull, options.outcome_angle, "--outcome-angle");
   std::vector<int> face_outcome(body.hull.faces.size(), -1);
   for (std::size_t o = 0; o < assigned.outcomes.size(); ++o)

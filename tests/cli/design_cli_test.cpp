@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -79,6 +80,12 @@ TEST_F(DesignCli, BadTargetsAndOptionsAreOneLineErrorsAndWriteNothing) {
   expect_bad_input(
       run_cli("design box:x=1,y=1,z=1 --target " + target("t.json", cube_target) + " --max-move -1"),
       {"--max-move"});
+  expect_bad_input(
+      run_cli("design box:x=1,y=1,z=1 --target " + target("t.json", cube_target) + " --min-margin -0.1"),
+      {"--min-margin"});
+  expect_bad_input(run_cli("design box:x=1,y=1,z=1 --target " + target("t.json", cube_target) +
+                           " --outcome-normals moving"),
+                   {"--outcome-normals", "moving"});
   expect_bad_input(run_cli("design box:x=1,y=1,z=1 --target " + shell_quote(dir_.string() + "/missing.json")),
                    {"missing.json"});
   EXPECT_FALSE(fs::exists(dir_.string() + "/out/design.json"));
@@ -151,6 +158,28 @@ TEST_F(DesignCli, ATossedDesignWhoseDropsDoNotRestIsNotConverged) {
   EXPECT_NE(j["tossed"]["stop"], "converged");
   EXPECT_FALSE(j["tossed"]["reached"].get<bool>());
   EXPECT_EQ(j["tossed"]["check"]["counts"].back(), 20);  // every check drop: not at rest
+}
+
+// convex_dice's rule: with the normals following, the JSON gives each outcome's normal at the design (a face
+// normal of the design's hull, so a unit vector) and the options say so; the outcomes' margins are there.
+TEST_F(DesignCli, FollowingNormalsAreInTheJson) {
+  // The cube's target with the bottom outcome's normal given 11° off the bottom face.
+  const std::string tilted =
+      "[[[0,0.2,-1],0.4],[[0,0,1],0.12],[[1,0,0],0.12],[[-1,0,0],0.12],[[0,1,0],0.12],[[0,-1,0],0.12]]";
+  const auto r = run_cli("design box:x=1,y=1,z=1 --outcome-normals follow --min-margin 0.02 --target " +
+                         target("t.json", tilted) + " --json");
+  const nlohmann::json j = parse_json(r);
+  EXPECT_EQ(j["options"]["outcome_normals"], "follow");
+  EXPECT_EQ(j["options"]["min_margin"], 0.02);
+  for (const auto& o : j["outcomes"]) {
+    ASSERT_TRUE(o.contains("design_normal"));
+    const auto n = o["design_normal"];
+    EXPECT_NEAR(std::hypot(n[0].get<double>(), n[1].get<double>(), n[2].get<double>()), 1.0, 1e-12);
+    EXPECT_GT(o["margin"].get<double>(), 0.0);
+  }
+  // The bottom face is the outcome's face, so its normal moved there from the tilted target's.
+  EXPECT_TRUE(j["reached"].get<bool>());
+  EXPECT_NEAR(j["outcomes"][0]["design_normal"][2].get<double>(), -1.0, 1e-9);
 }
 
 TEST_F(DesignCli, AnUnreachableTargetSaysSoAndGivesItsBestAchievable) {

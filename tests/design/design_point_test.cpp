@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "../../src/design/attraction.hpp"
+#include "../../src/design/descent.hpp"
 #include "../../src/design/design_step.hpp"
 #include "../../src/design/flat_faces.hpp"
 #include "repose/design/design.hpp"
@@ -326,6 +327,37 @@ TEST(Attraction, AnOutcomeWithNoStableFaceIsPulledTowardStability) {
     }
   EXPECT_GT(compared, 100);
   EXPECT_EQ(rows.row(1).cwiseAbs().maxCoeff(), 0.0);
+}
+
+// With a margin floor m₀ (DesignOptions::min_margin) a stable outcome whose best face lies closer than m₀
+// to the edge is drawn too: residual t·(m₀ − m)/(0.1·L), m the model's face_stability_margin of the rebuilt
+// particle; an outcome whose best face has m ≥ m₀ gets none. The box's faces have m = 0.5 (a unit cube),
+// L = (6/π)^(1/3); floors on either side of it.
+TEST(Attraction, AMarginFloorDrawsAStableFaceInward) {
+  const std::vector<Vec3> points = load_particle("box:x=1,y=1,z=1", 1.0).hull.vertices;
+  const DesignTarget target = parse_design_target("[[[0,0,1],0.5],[[0,0,-1],0.5]]", "cube");
+  DesignOptions options;
+  options.outcome_angle = std::numbers::pi / 2;
+  const double length = std::cbrt(6 / std::numbers::pi);
+  for (const double floor : {0.0, 0.4, 0.5 / length, 0.6}) {
+    options.min_margin = floor;
+    const detail::Point at = detail::evaluate(points, {}, Vec3::Zero(), "cube", target, options);
+    ASSERT_NEAR(at.particle.length, length, 1e-12);
+    const double expected = std::max(0.0, 0.5 * (floor - 0.5 / length) / 0.1);
+    EXPECT_NEAR(at.attraction[0], expected, 1e-12) << "floor " << floor;
+    EXPECT_NEAR(at.attraction[1], expected, 1e-12) << "floor " << floor;
+  }
+  // A design that starts here with a floor above its faces' margins leaves them free (floor 0): a start
+  // built that way is the user's, not drawn inward; one below them keeps its floor.
+  const Particle cube = load_particle("box:x=1,y=1,z=1", 1.0);
+  for (const double floor : {0.4, 0.6}) {
+    options.min_margin = floor;
+    const detail::DesignSetup setup = detail::design_setup(cube, options);
+    const detail::Point start = detail::start_point(setup, target, options);
+    const double kept = floor < 0.5 / length ? floor : 0.0;
+    EXPECT_EQ(start.margin_floor, std::vector<double>(2, kept)) << "floor " << floor;
+    EXPECT_EQ(start.attraction, std::vector<double>(2, 0.0)) << "floor " << floor;
+  }
 }
 
 // The design starts such outcomes: the ellipsoid's ends, 0.1 each within 20° of ±x, have no stable face at

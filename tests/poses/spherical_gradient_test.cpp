@@ -3,6 +3,7 @@
 // double instantiation against closed forms.
 #include <gtest/gtest.h>
 
+#include <Eigen/Core>  // before AutoDiff, which does not include it itself
 #include <cmath>
 #include <numbers>
 #include <random>

@@ -31,12 +31,20 @@ struct DesignOptions {
   /// With moving vertices: the centre of mass follows the solid's centroid (plus its offset, an insert that
   /// moves with the part) or stays fixed in the body frame.
   MassModel mass = MassModel::follows_shape;
-  double outcome_angle = 0.5;     ///< rad: a hull face belongs to the nearest outcome normal within this
+  double outcome_angle = 0.5;  ///< rad: a hull face belongs to the nearest outcome normal within this
+  /// After every accepted step each outcome's normal becomes that of its most probable stable face, and the
+  /// faces are assigned afresh (convex_dice's rule: an outcome is the face the die shows, wherever the design
+  /// turns it). False: the target's normals stay fixed in the body frame.
+  bool follow_outcome_normals = false;
   double com_margin = 0.05;       ///< × L: the centre of mass stays at least this far inside every face
   double max_vertex_move = 0.15;  ///< × L: no vertex (faces: no plane's foot from the start's centre of mass)
                                   ///< moves further than this from where it started
   double min_edge = 0.02;       ///< × L: no hull edge gets shorter (unless it started shorter)
   double min_face_area = 1e-3;  ///< × L²: no hull face gets smaller (unless it started smaller)
+  /// × L: every outcome (target > 0) is drawn toward a stable face whose centre-of-mass projection lies at
+  /// least this far inside it (a residual in the objective; 0: only an outcome with no stable face is),
+  /// unless its best face starts stable and closer to the edge than this (then only kept stable).
+  double min_margin = 0;
   /// Vertices: the start's faces of four or more vertices stay flat (each is a kink of the probabilities
   /// otherwise: moving one vertex folds it one way or the other). False lets them fold.
   bool keep_faces_flat = true;
@@ -62,6 +70,10 @@ struct DesignStep {
   int com_outside = 0;             ///<   the centre of mass could not be kept com_margin inside the hull
   int degenerate = 0;              ///<   the points' hull degenerated
   bool structure_changed = false;  ///< the set of stable faces changed (a topology change of the basins)
+  /// follow_outcome_normals: the normals moved to their faces' and some face changed outcome with them
+  bool outcomes_reassigned = false;
+  /// follow_outcome_normals: the normals were not moved (an outcome would have lost all its faces)
+  bool normals_kept = false;
   bool accepted = false;  ///< a trial step lowered the objective (the last iteration of a stalled design: no)
 };
 
@@ -72,7 +84,13 @@ struct DesignResult {
   Vec3 centroid;               ///< the design solid's centroid (where a uniform part has its centre of mass)
   double length = 0;           ///< L of the design
   std::vector<double> target;  ///< per outcome, then the unassigned faces (0)
-  std::vector<double> start;   ///< the same, achieved by the starting body
+  /// Per outcome: the normal its faces are assigned by at the design (the target's, unless
+  /// follow_outcome_normals moved it), the input mesh's frame.
+  std::vector<Vec3> outcome_normals;
+  /// Per outcome (× L): the best stability margin among its faces at the design (how far the centre of
+  /// mass's projection lies inside the face; negative: no face of it is stable).
+  std::vector<double> outcome_margin;
+  std::vector<double> start;     ///< the same, achieved by the starting body
   std::vector<double> achieved;  ///< the same, by the design (exact quasi-static basins)
   std::vector<DesignStep> history;
   std::string stop;  ///< "converged", "iterations" (max_iterations reached) or "stalled" (no trial step
