@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "../model/surface_facts.hpp"
 #include "design_point.hpp"
 #include "solid_centroid.hpp"
 
@@ -13,8 +14,8 @@ namespace repose::detail {
 namespace {
 
 // The stability margin of `face` with the hull's vertices at `x` and the centre of mass at `com` (body
-// frame): the face's normal by Newell's formula from its loop, then the smallest inward distance from an
-// edge (surface_facts.cpp's face_stability_margin, with the vertices free to move).
+// frame): the face's normal by Newell's formula from its loop, then the model's polygon margin (the
+// vertices free to move).
 double margin(const std::vector<Vec3>& x, const HullFace& face, const Vec3& com) {
   Vec3 normal = Vec3::Zero();
   const std::size_t n = face.loop.size();
@@ -22,26 +23,7 @@ double margin(const std::vector<Vec3>& x, const HullFace& face, const Vec3& com)
     normal +=
         x[static_cast<std::size_t>(face.loop[i])].cross(x[static_cast<std::size_t>(face.loop[(i + 1) % n])]);
   normal.normalize();
-  double out = INFINITY;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec3& a = x[static_cast<std::size_t>(face.loop[i])];
-    const Vec3& b = x[static_cast<std::size_t>(face.loop[(i + 1) % n])];
-    out = std::min(out, normal.cross(b - a).normalized().dot(com - a));
-  }
-  return out;
-}
-
-// The solid hull's volume with its vertices at `x` (the fan of tetrahedra solid_centroid sums).
-double volume(const std::vector<Vec3>& x, const ConvexHull& hull) {
-  const Vec3& o = x.front();
-  double out = 0;
-  for (const HullFace& f : hull.faces) {
-    const Vec3& a = x[static_cast<std::size_t>(f.loop[0])];
-    for (std::size_t k = 1; k + 1 < f.loop.size(); ++k)
-      out += (a - o).dot(
-          (x[static_cast<std::size_t>(f.loop[k])] - o).cross(x[static_cast<std::size_t>(f.loop[k + 1])] - o));
-  }
-  return out / 6;
+  return polygon_margin(x, face.loop, normal, com);
 }
 
 // The outcome's face with the best (largest) margin, and that margin less the floor (× L: min_margin);
@@ -107,7 +89,7 @@ Eigen::MatrixXd attraction_rows(const Point& p, MassModel mass, ShapeFreedom sha
           x[static_cast<std::size_t>(j)][k] += s == 0 ? h : -h;
           const Vec3 com = mass == MassModel::follows_shape ? Vec3(solid_centroid<double>(x, hull) - centroid)
                                                             : Vec3::Zero();
-          const double length = std::cbrt(6 * volume(x, hull) / std::numbers::pi);
+          const double length = std::cbrt(6 * solid_volume<double>(x, hull) / std::numbers::pi);
           side[s] = margin(x, face, com) / length;
           x[static_cast<std::size_t>(j)] = hull.vertices[static_cast<std::size_t>(j)];
         }

@@ -63,13 +63,18 @@ void compute_dihedral_facts(const TriangleMesh& mesh, double length, double& max
 double face_stability_margin(const ConvexHull& hull, const HullFace& face, const Vec3& com) {
   // Project the centre of mass onto the face plane, then take the smallest inward distance to an edge.
   const Vec3 p = com - (face.normal.dot(com) - face.offset) * face.normal;
+  return polygon_margin(hull.vertices, face.loop, face.normal, p);
+}
+
+double polygon_margin(const std::vector<Vec3>& points, const std::vector<int>& loop, const Vec3& normal,
+                      const Vec3& point) {
   double margin = INFINITY;
-  const std::size_t n = face.loop.size();
+  const std::size_t n = loop.size();
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec3& a = hull.vertices[face.loop[i]];
-    const Vec3& b = hull.vertices[face.loop[(i + 1) % n]];
-    const Vec3 inward = face.normal.cross(b - a).normalized();  // loop is CCW seen from outside
-    margin = std::min(margin, inward.dot(p - a));
+    const Vec3& a = points[static_cast<std::size_t>(loop[i])];
+    const Vec3& b = points[static_cast<std::size_t>(loop[(i + 1) % n])];
+    const Vec3 inward = normal.cross(b - a).normalized();  // the loop is CCW seen from outside
+    margin = std::min(margin, inward.dot(point - a));
   }
   return margin;
 }
