@@ -41,7 +41,10 @@ struct DesignCliOptions {
 
 void print_design(const DesignCliOptions& o, const DesignTarget& target, const DesignResult& r) {
   std::cout << "design of " << o.source << " for " << o.target << " (vary " << o.vary << ")\n";
-  std::cout << "outcome  normal                         target    start     achieved\n";
+  // With --outcome-normals follow the normals shown are where the outcomes' faces turned to.
+  std::cout << (o.design.follow_outcome_normals ? "outcome  normal (followed)              "
+                                                : "outcome  normal                         ")
+            << "target    start     achieved\n";
   char line[160];
   // The normals the outcomes are assigned by at the design (the target's unless --outcome-normals follow).
   for (std::size_t k = 0; k < target.outcomes.size(); ++k) {
