@@ -10,6 +10,7 @@
 #include <numbers>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../../src/design/face_planes.hpp"
@@ -211,6 +212,20 @@ TEST(DesignQuasiStatic, FreedomAndOptionErrorsNameTheOption) {
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("--max-move"), std::string::npos) << e.what();
+  }
+  // A tolerance of 0 could never be met (the descent would run all its iterations), a negative margin floor
+  // means nothing: each is named.
+  for (const auto& [option, set] : std::vector<std::pair<std::string, void (*)(DesignOptions&)>>{
+           {"--tolerance", [](DesignOptions& o) { o.tolerance = 0; }},
+           {"--min-margin", [](DesignOptions& o) { o.min_margin = -0.01; }}}) {
+    DesignOptions options;
+    set(options);
+    try {
+      design_quasi_static(load_particle("box:x=1,y=1,z=1", 1.0), target, options);
+      ADD_FAILURE() << "no error for " << option;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(option), std::string::npos) << e.what();
+    }
   }
 }
 
