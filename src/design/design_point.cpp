@@ -101,6 +101,7 @@ void score(Point& p) {
   p.attraction = attraction(p.particle, p.landscape, p.target, p.margin_floor);
   for (const double a : p.attraction) p.objective += a * a;
 }
+
 std::vector<double> outcome_margins(const Point& p) {
   std::vector<double> out;
   for (const DesignOutcome& o : p.target.outcomes) {
