@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <numbers>
 #include <random>
 #include <sstream>
@@ -13,6 +14,8 @@
 #include <vector>
 
 #include "repose/design/design.hpp"
+#include "repose/design/design_json.hpp"
+#include "repose/design/design_report.hpp"
 #include "repose/model/particle.hpp"
 #include "repose/poses/landscape.hpp"
 
@@ -104,6 +107,22 @@ TEST(OutcomeRule, BinomialPrismFromTheirStartMeetsTheTargetWithNormalsFollowingT
     EXPECT_LT(nearest, 1e-9) << "outcome " << o << "'s normal is no face's";
     EXPECT_GT(margin / design.length, 0.98 * 0.02) << "outcome " << o;
     EXPECT_NEAR(r.outcome_margin[o], margin / design.length, 1e-12) << "outcome " << o;
+  }
+  // The report labels each rest pose with the outcome of the nearest followed normal (by the target's own
+  // normals the 4/16 faces, turned to ±63°, would be the 1/16 outcome's).
+  const std::string page =
+      design_report_html("binom4", target, their_rule(), r, design_json("binom4", target, their_rule(), r));
+  const std::string open = "<script id=\"repose-data\" type=\"application/json\">";
+  const std::size_t from = page.find(open) + open.size();
+  const nlohmann::json data = nlohmann::json::parse(page.substr(from, page.find("</script>", from) - from));
+  ASSERT_EQ(data["poses"].size(), 5u);
+  for (const auto& pose : data["poses"]) {
+    const Vec3 n(pose["down_normal_body"][0].get<double>(), pose["down_normal_body"][1].get<double>(),
+                 pose["down_normal_body"][2].get<double>());
+    std::size_t nearest = 0;
+    for (std::size_t o = 1; o < r.outcome_normals.size(); ++o)
+      if (n.dot(r.outcome_normals[o]) > n.dot(r.outcome_normals[nearest])) nearest = o;
+    EXPECT_EQ(pose["outcome"].get<int>(), static_cast<int>(nearest)) << "face " << pose["face"];
   }
 }
 
