@@ -74,8 +74,7 @@ DesignOptions design_options(const py::dict& kwargs) {
     } else {
       throw Error("design: unknown option '" + name +
                   "' (vary, mass, outcome_angle, outcome_normals, com_margin, max_move, max_step, min_edge, "
-                  "min_face, min_margin, "
-                  "smoothing, keep_faces_flat, tolerance, iterations)");
+                  "min_face, min_margin, smoothing, keep_faces_flat, tolerance, iterations)");
     }
   }
   return o;
