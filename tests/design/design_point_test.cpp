@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -357,6 +358,19 @@ TEST(Attraction, AMarginFloorDrawsAStableFaceInward) {
     const double kept = floor < 0.5 / length ? floor : 0.0;
     EXPECT_EQ(start.margin_floor, std::vector<double>(2, kept)) << "floor " << floor;
     EXPECT_EQ(start.attraction, std::vector<double>(2, 0.0)) << "floor " << floor;
+    // Every trial point keeps the start's floors (not the option's): a step that shrinks the cube's bottom
+    // face (its four bottom corners toward the axis) is scored against them.
+    Eigen::VectorXd d = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(start.points.size()) + 3);
+    for (std::size_t i = 0; i < start.points.size(); ++i)
+      if (start.points[i].z() < 0)
+        d.segment<2>(3 * static_cast<Eigen::Index>(i)) = -0.05 * start.points[i].head<2>();
+    DesignStep step;
+    double moved = 0;
+    const std::optional<detail::Point> next =
+        detail::trial_point(start, d, MassModel::follows_shape, ShapeFreedom::vertices, setup.bounds, "cube",
+                            start.target, options, step, moved);
+    ASSERT_TRUE(next.has_value());
+    EXPECT_EQ(next->margin_floor, start.margin_floor) << "floor " << floor;
   }
 }
 
