@@ -103,15 +103,12 @@ void count_fit_noise(TossedOutcomes& check, const std::vector<double>& target, s
               check.counts[outcomes + 1] == 0;
   bool all = each;
   const double z_all = bonferroni_z(outcomes);
-  for (std::size_t k = 0; k < outcomes && each; ++k) {
+  for (std::size_t k = 0; k < outcomes && all; ++k) {
     const double t = target[k];
     const double spread = std::sqrt(t * (1 - t) * (1 / n + 1 / m));
     const double off = std::abs(check.probability[k] - t);
     each = each && off <= kZ95 * spread;
-  }
-  for (std::size_t k = 0; k < outcomes && all; ++k) {
-    const double t = target[k];
-    all = std::abs(check.probability[k] - t) <= z_all * std::sqrt(t * (1 - t) * (1 / n + 1 / m));
+    all = off <= z_all * spread;
   }
   check.all_within_fit_and_check = each;
   check.all_within_fit_and_check_simultaneous = all;
